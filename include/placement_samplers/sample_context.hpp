@@ -1,0 +1,62 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/placement.hpp"
+#include "placement_samplers/random.hpp"
+
+namespace placement_samplers {
+
+/// Everything that varies within one scene, handed down the sampler tree. Samplers keep no
+/// per-call state, so one tree serves every thread; each thread owns its context.
+class SampleContext {
+ public:
+  /// @param checker the collision test of this scene (owned by the caller)
+  /// @param maxAttempts overrides every sampler's limit when non-zero
+  SampleContext(Engine& engine, CollisionChecker& checker, std::uint32_t maxAttempts = 0);
+
+  /// Forget every entry and placement, keep the buffers (start of a scene).
+  void clear();
+  /// Adds a fixture: checked against, never moved, not part of the placements.
+  void addFixture(const std::string& name, const ObjectModel* object,
+                  const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation);
+  /// Records a new placement and makes it an obstacle for the following ones.
+  void addPlacement(Placement placement);
+
+  /// The fixture or placed object called @p name, or nullptr.
+  const PlacedEntry* find(const std::string& name) const;
+
+  /// @return the index of an entry that @p candidate collides with, or CollisionChecker::kNone
+  std::ptrdiff_t firstCollision(const Candidate& candidate) const {
+    return checker_.firstCollision(entries_, candidate);
+  }
+  bool needsOrientation() const { return checker_.needsOrientation(); }
+
+  /// Per-entry rejection counters, zeroed, sized for the current entries.
+  std::vector<std::uint32_t>& blockerCounts();
+
+  /// Records why the scene failed; the sampling stops.
+  void fail(Failure failure) { failure_ = std::move(failure); }
+
+  Engine& engine() { return engine_; }
+  std::uint32_t maxAttempts() const { return maxAttempts_; }
+  const std::vector<PlacedEntry>& entries() const { return entries_; }
+  const std::vector<Placement>& placements() const { return placements_; }
+  std::vector<Placement>& placements() { return placements_; }
+  const std::optional<Failure>& failure() const { return failure_; }
+
+ private:
+  Engine& engine_;
+  CollisionChecker& checker_;
+  std::uint32_t maxAttempts_;
+  std::vector<PlacedEntry> entries_;
+  std::vector<Placement> placements_;
+  std::vector<std::uint32_t> blockerCounts_;
+  std::optional<Failure> failure_;
+};
+
+}  // namespace placement_samplers

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/object_model.hpp"
+#include "placement_samplers/sequential_composite_sampler.hpp"
+
+namespace placement_samplers {
+
+/// Something already in the scene: checked against, never moved.
+struct FixtureSpec {
+  std::string name;        ///< unique among fixtures and objects; its tf frame name
+  std::string objectName;  ///< the configured object it takes its geometry from ("" for a shape)
+  ObjectPtr object;        ///< geometry, with bounds derived under the fixture's orientation
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
+/// A validated, immutable configuration: what the builder produces from one schema, for the CLI
+/// and the node alike.
+struct SceneConfig {
+  std::string frameId = "world";       ///< parent frame of every pose
+  std::string tfPrefix = "placement/"; ///< child frame of object NAME is tfPrefix + NAME
+  std::uint64_t seed = 0;              ///< 0 = a fresh seed from std::random_device
+  CollisionMode collisionCheck = CollisionMode::Radius;
+  double collisionMargin = 0.0;        ///< clearance in the exact modes [m]
+  std::uint32_t maxAttempts = 5000;    ///< default samples per object
+  std::vector<ObjectPtr> objects;      ///< every configured object, in configuration order
+  std::vector<FixtureSpec> fixtures;   ///< configured fixtures
+  std::vector<std::string> hidden;     ///< objects placed far away by hide()
+  std::shared_ptr<SequentialCompositeSampler> root;  ///< the root composite, named "root"
+
+  /// The configured object called @p name, or nullptr.
+  const ObjectModel* findObject(const std::string& name) const;
+  ObjectPtr findObjectPtr(const std::string& name) const;
+};
+
+/// Name of the root composite sampler.
+constexpr const char* kRootSamplerName = "root";
+
+/// True for names made of [A-Za-z0-9_-], at least one character: valid in tf frames.
+bool isValidName(const std::string& name);
+
+}  // namespace placement_samplers

@@ -1,0 +1,71 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "placement_samplers/placement.hpp"
+#include "placement_samplers/placement_sampler.hpp"
+#include "placement_samplers/scene_config.hpp"
+
+namespace placement_samplers {
+
+/// A fixture given with a request: a configured object's geometry or a primitive shape.
+struct RequestFixture {
+  std::string name;
+  std::string object;          ///< a configured object, or "" to use @ref shape
+  std::optional<Shape> shape;  ///< used when @ref object is empty
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
+/// What varies per call. Empty members take the configured values.
+struct SampleRequest {
+  std::string sampler;               ///< "" = the root composite; else any sampler by name
+  std::vector<RequestFixture> fixtures;
+  Reference reference;               ///< Default = as configured
+  std::optional<bool> onTop;         ///< unset = true, as robosuite
+  std::optional<CollisionMode> collisionCheck;
+  std::uint32_t maxAttempts = 0;     ///< 0 = as configured
+};
+
+/// A request checked against the configuration, ready to sample any number of scenes.
+struct PreparedRequest {
+  const PlacementSampler* sampler = nullptr;
+  Reference reference;
+  bool onTop = true;
+  CollisionMode collisionCheck = CollisionMode::Radius;
+  std::uint32_t maxAttempts = 0;
+  std::vector<FixtureSpec> fixtures;  ///< configured fixtures, then the request's
+};
+
+/// Samples scenes from one configuration. Immutable and safe to share between threads.
+class SceneGenerator {
+ public:
+  explicit SceneGenerator(std::shared_ptr<const SceneConfig> config);
+
+  const SceneConfig& config() const { return *config_; }
+  std::shared_ptr<const SceneConfig> configPtr() const { return config_; }
+
+  /// Checks @p request: sampler, reference, fixtures (names, objects, shapes, poses).
+  /// @throw RequestError saying what is wrong
+  PreparedRequest prepare(const SampleRequest& request) const;
+
+  /// Scene @p index of a request seeded with @p seed; the same whatever else is sampled.
+  SceneResult sampleScene(const PreparedRequest& request, std::uint64_t seed,
+                          std::uint64_t index) const;
+
+  /// Scenes 0 .. count-1 over @p threads threads (0 = one per core); the result does not depend
+  /// on the thread count.
+  std::vector<SceneResult> sampleScenes(const PreparedRequest& request, std::uint64_t seed,
+                                        std::uint64_t count, unsigned threads = 1) const;
+
+ private:
+  class Worker;
+  std::shared_ptr<const SceneConfig> config_;
+};
+
+}  // namespace placement_samplers

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Shared set-up for scripts/test and scripts/run: Debian packages, environment, build.
+# Source it; it defines ps_install, ps_env and ps_build.
+
+PS_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+PS_BUILD="$PS_ROOT/build"
+
+PS_PACKAGES=(
+  cmake g++ make catkin ros-core ros-core-dev rosbash
+  libroscpp-dev ros-message-generation ros-message-runtime python3-genpy python3-gencpp python3-genmsg
+  libstd-msgs-dev ros-std-msgs libgeometry-msgs-dev ros-geometry-msgs
+  libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs
+  libshape-msgs-dev ros-shape-msgs libstd-srvs-dev ros-std-srvs
+  libtf2-dev libtf2-ros-dev libtf2-eigen-dev python3-tf2-ros tf2-tools
+  liburdf-dev liburdfdom-dev libfcl-dev libeigen3-dev
+  libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
+  librostest-dev python3-rostest python3-rospy python3-nose libgtest-dev libbenchmark-dev
+  libyaml-cpp-dev
+)
+
+ps_sudo() {
+  if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+# Installs the Debian packages that are missing (nothing to do on a second run).
+ps_install() {
+  local missing=()
+  local p
+  for p in "${PS_PACKAGES[@]}" "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "==> installing ${#missing[@]} Debian packages: ${missing[*]}"
+    ps_sudo apt-get update -qq
+    ps_sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+      "${missing[@]}" >/dev/null
+  fi
+  # rostest and roslaunch resolve "localhost" through /etc/hosts.
+  if ! getent hosts localhost >/dev/null; then
+    echo "127.0.0.1 localhost" | ps_sudo tee -a /etc/hosts >/dev/null
+  fi
+}
+
+# Debian's python first (a pyenv python lacks catkin_pkg); ROS traffic on loopback.
+ps_env() {
+  export PATH="/usr/bin:$PATH"
+  export ROS_HOSTNAME=localhost
+  unset ROS_IP
+}
+
+# Configures and builds into build/. The second configure stores the PYTHONPATH that python
+# rostests need (the first one caches it empty).
+ps_build() {
+  local fresh=0
+  [ -f "$PS_BUILD/CMakeCache.txt" ] || fresh=1
+  cmake -S "$PS_ROOT" -B "$PS_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  make -C "$PS_BUILD" -j"$(nproc)" all tests
+  if [ "$fresh" -eq 1 ]; then
+    cmake "$PS_BUILD" >/dev/null
+  fi
+}
+
+# Sources build/devel/setup.bash (it fails under set -u).
+ps_source() {
+  set +u
+  # shellcheck disable=SC1091
+  source "$PS_BUILD/devel/setup.bash"
+  set -u
+}

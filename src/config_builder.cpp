@@ -1,0 +1,295 @@
+#include "placement_samplers/config_builder.hpp"
+
+#include <limits>
+#include <set>
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/object_config.hpp"
+#include "placement_samplers/uniform_random_sampler.hpp"
+
+namespace placement_samplers {
+namespace {
+
+/// State of one build: the names that a reference may use at each point of the sampling order.
+class Builder {
+ public:
+  explicit Builder(SceneConfig& config) : config_(config) {}
+
+  void objects(const ConfigNode& node) {
+    for (const auto& entry : node.entries()) {
+      if (!isValidName(entry.first)) {
+        entry.second.fail("object names must match [A-Za-z0-9_-]+");
+      }
+      config_.objects.push_back(std::make_shared<ObjectModel>(parseObject(entry.first, entry.second)));
+    }
+  }
+
+  void fixtures(const ConfigNode& node) {
+    for (const ConfigNode& f : node.elements()) {
+      f.checkKeys({"name", "object", "position", "orientation"});
+      FixtureSpec fixture;
+      fixture.name = f.at("name").asString();
+      if (!isValidName(fixture.name)) {
+        f.at("name").fail("fixture names must match [A-Za-z0-9_-]+, got '" + fixture.name + "'");
+      }
+      if (config_.findObject(fixture.name) != nullptr || available_.count(fixture.name) != 0) {
+        f.at("name").fail("'" + fixture.name + "' is already the name of an object or fixture");
+      }
+      fixture.objectName = f.at("object").asString();
+      const ObjectModel* object = config_.findObject(fixture.objectName);
+      if (object == nullptr) {
+        f.at("object").fail("unknown object '" + fixture.objectName + "' (not under objects)");
+      }
+      fixture.position = f.at("position").asVector3();
+      if (const ConfigNode* q = f.get("orientation")) {
+        fixture.orientation = parseQuaternion(*q);
+      }
+      fixture.object = std::make_shared<ObjectModel>(reorientedObject(*object, fixture.orientation));
+      available_.insert(fixture.name);
+      config_.fixtures.push_back(std::move(fixture));
+    }
+  }
+
+  /// Appends the samplers of @p list to @p parent; @p inherited is the reference a call
+  /// passes down (set when an enclosing composite's sample_args names one).
+  void samplers(const ConfigNode& list, SequentialCompositeSampler& parent,
+                const std::optional<Reference>& inherited) {
+    for (const ConfigNode& s : list.elements()) {
+      SampleArgs args = sampleArgs(s);
+      const std::optional<Reference> effective = args.reference ? args.reference : inherited;
+      const std::string type = s.get("type") ? s.at("type").asString() : "uniform";
+      if (type == "uniform") {
+        parent.appendSampler(uniform(s, effective), args);
+      } else if (type == "sequential") {
+        s.checkKeys({"name", "type", "samplers", "sample_args"});
+        auto composite = std::make_shared<SequentialCompositeSampler>(samplerName(s));
+        samplers(s.at("samplers"), *composite, effective);
+        wrap(s, [&] { parent.appendSampler(composite, args); });
+      } else {
+        s.at("type").fail("expected uniform or sequential, got '" + type + "'");
+      }
+    }
+  }
+
+  void hide(const ConfigNode& node) {
+    std::vector<ObjectPtr> objects;
+    for (const ConfigNode& n : node.elements()) {
+      objects.push_back(object(n));
+      config_.hidden.push_back(n.asString());
+    }
+    wrap(node, [&] { config_.root->hide(objects); });
+  }
+
+ private:
+  template <typename F>
+  void wrap(const ConfigNode& node, F f) {
+    try {
+      f();
+    } catch (const ConfigError& e) {
+      node.fail(e.what());
+    }
+  }
+
+  std::string samplerName(const ConfigNode& s) {
+    const ConfigNode& n = s.at("name");
+    const std::string& name = n.asString();
+    if (name.empty()) {
+      n.fail("expected a non-empty sampler name");
+    }
+    if (!samplerNames_.insert(name).second || name == kRootSamplerName ||
+        name == SequentialCompositeSampler::kHideSamplerName) {
+      n.fail("sampler name '" + name + "' is used twice or reserved");
+    }
+    return name;
+  }
+
+  ObjectPtr object(const ConfigNode& n) {
+    const std::string& name = n.asString();
+    ObjectPtr object = config_.findObjectPtr(name);
+    if (!object) {
+      n.fail("unknown object '" + name + "' (not under objects)");
+    }
+    if (!assigned_.insert(name).second) {
+      n.fail("object '" + name + "' is already placed by another sampler or hidden");
+    }
+    return object;
+  }
+
+  SampleArgs sampleArgs(const ConfigNode& s) {
+    SampleArgs args;
+    const ConfigNode* a = s.get("sample_args");
+    if (a == nullptr) {
+      return args;
+    }
+    a->checkKeys({"reference", "on_top"});
+    if (const ConfigNode* r = a->get("reference")) {
+      if (r->isString()) {
+        args.reference = Reference::named(r->asString());
+        referenceNodes_.push_back(r);
+      } else if (r->isList()) {
+        args.reference = Reference::at(r->asVector3());
+      } else {
+        r->fail("expected an object or fixture name, or a point [x, y, z]");
+      }
+    }
+    if (const ConfigNode* t = a->get("on_top")) {
+      args.onTop = t->asBool();
+    }
+    return args;
+  }
+
+  std::shared_ptr<UniformRandomSampler> uniform(const ConfigNode& s,
+                                                const std::optional<Reference>& reference) {
+    s.checkKeys({"name", "type", "objects", "x_range", "y_range", "rotation", "rotation_axis",
+                 "ensure_object_boundary_in_range", "ensure_valid_placement", "reference_pos",
+                 "z_offset", "sample_args", "max_attempts"});
+    const std::string name = samplerName(s);
+    UniformSamplerParams p;
+    p.maxAttempts = config_.maxAttempts;
+    if (const ConfigNode* n = s.get("x_range")) {
+      p.xRange = range(*n);
+    }
+    if (const ConfigNode* n = s.get("y_range")) {
+      p.yRange = range(*n);
+    }
+    if (const ConfigNode* n = s.get("rotation")) {
+      if (n->type() == ConfigNode::Type::Null) {
+        p.rotation = RotationSpec::full();
+      } else if (n->isList()) {
+        const std::vector<double> v = n->asNumbers(2);
+        p.rotation = RotationSpec::range(v[0], v[1]);
+      } else if (n->isNumber()) {
+        p.rotation = RotationSpec::fixed(n->asDouble());
+      } else {
+        n->fail("expected an angle in [rad], a pair [min, max] in [rad], or nothing for U(0, 2pi)");
+      }
+    }
+    if (const ConfigNode* n = s.get("rotation_axis")) {
+      const std::string& axis = n->asString();
+      if (axis != "x" && axis != "y" && axis != "z") {
+        n->fail("expected x, y or z, got '" + axis + "'");
+      }
+      p.rotationAxis = axis[0] - 'x';
+    }
+    if (const ConfigNode* n = s.get("ensure_object_boundary_in_range")) {
+      p.ensureObjectBoundaryInRange = n->asBool();
+    }
+    if (const ConfigNode* n = s.get("ensure_valid_placement")) {
+      p.ensureValidPlacement = n->asBool();
+    }
+    if (const ConfigNode* n = s.get("reference_pos")) {
+      p.referencePos = n->asVector3();
+    }
+    if (const ConfigNode* n = s.get("z_offset")) {
+      p.zOffset = n->asDouble();
+    }
+    if (const ConfigNode* n = s.get("max_attempts")) {
+      p.maxAttempts = static_cast<std::uint32_t>(n->asInt(1, std::numeric_limits<std::uint32_t>::max()));
+    }
+    // A named reference must exist before this sampler runs: a fixture or an earlier object.
+    if (reference && reference->kind == Reference::Kind::Name &&
+        available_.count(reference->name) == 0) {
+      const ConfigNode* where = &s;
+      for (const ConfigNode* r : referenceNodes_) {
+        if (r->asString() == reference->name) {
+          where = r;
+        }
+      }
+      where->fail("reference '" + reference->name + "' of sampler '" + name +
+                  "' is neither a fixture nor an object placed by an earlier sampler");
+    }
+    std::vector<ObjectPtr> objects;
+    if (const ConfigNode* list = s.get("objects")) {
+      for (const ConfigNode& n : list->elements()) {
+        objects.push_back(object(n));
+      }
+    }
+    std::shared_ptr<UniformRandomSampler> sampler;
+    wrap(s, [&] { sampler = std::make_shared<UniformRandomSampler>(name, p, objects); });
+    for (const ObjectPtr& o : objects) {
+      available_.insert(o->name);
+    }
+    return sampler;
+  }
+
+  static Eigen::Vector2d range(const ConfigNode& n) {
+    const std::vector<double> v = n.asNumbers(2);
+    if (v[0] > v[1]) {
+      n.fail("expected [min, max] with min <= max, got [" + std::to_string(v[0]) + ", " +
+             std::to_string(v[1]) + "]");
+    }
+    return Eigen::Vector2d(v[0], v[1]);
+  }
+
+  SceneConfig& config_;
+  std::set<std::string> available_;    // fixtures and objects placed so far, in sampling order
+  std::set<std::string> assigned_;     // objects that have a sampler
+  std::set<std::string> samplerNames_;
+  std::vector<const ConfigNode*> referenceNodes_;
+};
+
+}  // namespace
+
+CollisionMode parseCollisionMode(const ConfigNode& node) {
+  const std::string& mode = node.asString();
+  if (mode == "radius") {
+    return CollisionMode::Radius;
+  }
+  if (mode == "fcl") {
+    return CollisionMode::Fcl;
+  }
+  if (mode == "radius_and_fcl") {
+    return CollisionMode::RadiusAndFcl;
+  }
+  node.fail("expected radius, fcl or radius_and_fcl, got '" + mode + "'");
+}
+
+std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
+  root.checkKeys({"frame_id", "tf_prefix", "seed", "collision_check", "collision_margin",
+                  "max_attempts", "objects", "fixtures", "samplers", "hide"});
+  auto config = std::make_shared<SceneConfig>();
+  if (const ConfigNode* n = root.get("frame_id")) {
+    config->frameId = n->asString();
+    if (config->frameId.empty()) {
+      n->fail("expected a non-empty frame name");
+    }
+  }
+  if (const ConfigNode* n = root.get("tf_prefix")) {
+    config->tfPrefix = n->asString();
+  }
+  if (const ConfigNode* n = root.get("seed")) {
+    config->seed = n->asUInt64();
+  }
+  if (const ConfigNode* n = root.get("collision_check")) {
+    config->collisionCheck = parseCollisionMode(*n);
+  }
+  if (const ConfigNode* n = root.get("collision_margin")) {
+    config->collisionMargin = n->asDouble();
+    if (config->collisionMargin < 0.0) {
+      n->fail("expected a non-negative clearance in [m]");
+    }
+  }
+  if (const ConfigNode* n = root.get("max_attempts")) {
+    config->maxAttempts =
+        static_cast<std::uint32_t>(n->asInt(1, std::numeric_limits<std::uint32_t>::max()));
+  }
+  Builder builder(*config);
+  if (const ConfigNode* n = root.get("objects")) {
+    builder.objects(*n);
+  }
+  if (const ConfigNode* n = root.get("fixtures")) {
+    builder.fixtures(*n);
+  }
+  config->root = std::make_shared<SequentialCompositeSampler>(kRootSamplerName);
+  if (const ConfigNode* n = root.get("samplers")) {
+    builder.samplers(*n, *config->root, std::nullopt);
+  }
+  if (const ConfigNode* n = root.get("hide")) {
+    builder.hide(*n);
+  }
+  // Fails now rather than on the first request when the mode is not built in.
+  makeCollisionChecker(config->collisionCheck, config->collisionMargin);
+  return config;
+}
+
+}  // namespace placement_samplers

@@ -1,0 +1,10 @@
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "placement_samplers/sample_scenes_cli.hpp"
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  return placement_samplers::runSampleScenes(args, std::cout, std::cerr);
+}

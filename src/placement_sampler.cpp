@@ -1,0 +1,52 @@
+#include "placement_samplers/placement_sampler.hpp"
+
+#include <sstream>
+
+namespace placement_samplers {
+
+Reference Reference::named(const std::string& name) {
+  Reference r;
+  r.kind = Kind::Name;
+  r.name = name;
+  return r;
+}
+
+Reference Reference::at(const Eigen::Vector3d& point) {
+  Reference r;
+  r.kind = Kind::Point;
+  r.point = point;
+  return r;
+}
+
+std::string Reference::describe() const {
+  switch (kind) {
+    case Kind::Default:
+      return "reference_pos";
+    case Kind::Name:
+      return "'" + name + "'";
+    case Kind::Point: {
+      std::ostringstream out;
+      out << "[" << point.x() << ", " << point.y() << ", " << point.z() << "]";
+      return out.str();
+    }
+  }
+  return "";
+}
+
+PlacementSampler::PlacementSampler(std::string name) : name_(std::move(name)) {}
+
+const PlacementSampler* PlacementSampler::find(const std::string& name, SampleArgs* args) const {
+  if (name != name_) {
+    return nullptr;
+  }
+  if (args != nullptr) {
+    *args = SampleArgs();
+  }
+  return this;
+}
+
+void PlacementSampler::collectSamplers(std::vector<const PlacementSampler*>& out) const {
+  out.push_back(this);
+}
+
+}  // namespace placement_samplers

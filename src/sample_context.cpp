@@ -1,0 +1,45 @@
+#include "placement_samplers/sample_context.hpp"
+
+#include <algorithm>
+
+namespace placement_samplers {
+
+SampleContext::SampleContext(Engine& engine, CollisionChecker& checker, std::uint32_t maxAttempts)
+    : engine_(engine), checker_(checker), maxAttempts_(maxAttempts) {}
+
+void SampleContext::clear() {
+  entries_.clear();
+  placements_.clear();
+  failure_.reset();
+  checker_.clear();
+}
+
+void SampleContext::addFixture(const std::string& name, const ObjectModel* object,
+                               const Eigen::Vector3d& position,
+                               const Eigen::Quaterniond& orientation) {
+  entries_.push_back(PlacedEntry{name, object, position, orientation, true});
+  checker_.added(entries_, entries_.size() - 1);
+}
+
+void SampleContext::addPlacement(Placement placement) {
+  entries_.push_back(
+      PlacedEntry{placement.name, placement.object, placement.position, placement.orientation, false});
+  checker_.added(entries_, entries_.size() - 1);
+  placements_.push_back(std::move(placement));
+}
+
+const PlacedEntry* SampleContext::find(const std::string& name) const {
+  for (const PlacedEntry& entry : entries_) {
+    if (entry.name == name) {
+      return &entry;
+    }
+  }
+  return nullptr;
+}
+
+std::vector<std::uint32_t>& SampleContext::blockerCounts() {
+  blockerCounts_.assign(entries_.size(), 0);
+  return blockerCounts_;
+}
+
+}  // namespace placement_samplers

@@ -1,0 +1,138 @@
+#include "placement_samplers/sample_scenes_cli.hpp"
+
+#include <limits>
+#include <stdexcept>
+
+#include "placement_samplers/config_builder.hpp"
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/random.hpp"
+#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/scene_json.hpp"
+
+namespace placement_samplers {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: sample_scenes --config FILE [--seed S] [--scenes K] [--sampler NAME]\n"
+    "                     [--collision-check radius|fcl|radius_and_fcl] [--max-attempts N]\n"
+    "                     [--threads T]\n"
+    "Samples K scenes (default 1) from the YAML configuration FILE and prints one JSON object\n"
+    "per scene and line. S defaults to the configuration's seed (0 = random); scene i of seed S\n"
+    "is the same whatever K and T are. T = 0 (default) uses every core.\n"
+    "Exit status: 0 all scenes placed, 1 some scene failed, 2 usage or configuration error.\n";
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+std::uint64_t parseUnsigned(const std::string& flag, const std::string& text, std::uint64_t max) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    throw UsageError(flag + ": expected a non-negative integer, got '" + text + "'");
+  }
+  try {
+    const unsigned long long v = std::stoull(text);
+    if (v > max) {
+      throw std::out_of_range("too large");
+    }
+    return v;
+  } catch (const std::out_of_range&) {
+    throw UsageError(flag + ": " + text + " is out of range (at most " + std::to_string(max) + ")");
+  }
+}
+
+}  // namespace
+
+int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  std::string configPath;
+  std::string sampler;
+  std::string mode;
+  bool haveSeed = false;
+  std::uint64_t seed = 0;
+  std::uint64_t scenes = 1;
+  std::uint32_t maxAttempts = 0;
+  unsigned threads = 0;
+  try {
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      const std::string& flag = args[i];
+      if (flag == "--help" || flag == "-h") {
+        out << kUsage;
+        return 0;
+      }
+      if (i + 1 >= args.size()) {
+        throw UsageError(flag == "--config" || flag == "--seed" || flag == "--scenes" ||
+                                 flag == "--sampler" || flag == "--collision-check" ||
+                                 flag == "--max-attempts" || flag == "--threads"
+                             ? flag + ": missing value"
+                             : "unknown argument '" + flag + "'");
+      }
+      const std::string& value = args[++i];
+      if (flag == "--config") {
+        configPath = value;
+      } else if (flag == "--seed") {
+        haveSeed = true;
+        seed = parseUnsigned(flag, value, std::numeric_limits<std::uint64_t>::max());
+      } else if (flag == "--scenes") {
+        scenes = parseUnsigned(flag, value, 100000000);
+      } else if (flag == "--sampler") {
+        sampler = value;
+      } else if (flag == "--collision-check") {
+        mode = value;
+      } else if (flag == "--max-attempts") {
+        maxAttempts = static_cast<std::uint32_t>(
+            parseUnsigned(flag, value, std::numeric_limits<std::uint32_t>::max()));
+      } else if (flag == "--threads") {
+        threads = static_cast<unsigned>(parseUnsigned(flag, value, 1024));
+      } else {
+        throw UsageError("unknown argument '" + flag + "'");
+      }
+    }
+    if (configPath.empty()) {
+      throw UsageError("--config FILE is required");
+    }
+  } catch (const UsageError& e) {
+    err << "sample_scenes: " << e.what() << "\n" << kUsage;
+    return 2;
+  }
+
+  ConfigNode tree;
+  try {
+    tree = loadYamlFile(configPath);
+  } catch (const ConfigError& e) {
+    err << "sample_scenes: " << e.what() << "\n";
+    return 2;
+  }
+  try {
+    const SceneGenerator generator(buildSceneConfig(tree));
+    SampleRequest request;
+    request.sampler = sampler;
+    request.maxAttempts = maxAttempts;
+    if (!mode.empty()) {
+      ConfigNode node = ConfigNode::makeRoot();
+      node.add("collision_check").setString(mode);
+      try {
+        request.collisionCheck = parseCollisionMode(node.at("collision_check"));
+      } catch (const ConfigError& e) {
+        err << "sample_scenes: --" << e.what() << "\n";
+        return 2;
+      }
+    }
+    const PreparedRequest prepared = generator.prepare(request);
+    if (!haveSeed) {
+      seed = generator.config().seed != 0 ? generator.config().seed : randomSeed();
+    }
+    bool allPlaced = true;
+    for (const SceneResult& scene : generator.sampleScenes(prepared, seed, scenes, threads)) {
+      out << sceneToJson(scene) << "\n";
+      allPlaced = allPlaced && scene.success;
+    }
+    out.flush();
+    return allPlaced ? 0 : 1;
+  } catch (const ConfigError& e) {
+    err << "sample_scenes: " << configPath << ": " << e.what() << "\n";
+  } catch (const RequestError& e) {
+    err << "sample_scenes: " << e.what() << "\n";
+  }
+  return 2;
+}
+
+}  // namespace placement_samplers

@@ -1,0 +1,194 @@
+#include "placement_samplers/scene_generator.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/object_config.hpp"
+
+namespace placement_samplers {
+
+/// Per-thread state, reused from scene to scene: engine, checker and buffers.
+class SceneGenerator::Worker {
+ public:
+  Worker(const PreparedRequest& request, double margin)
+      : request_(request),
+        checker_(makeCollisionChecker(request.collisionCheck, margin)),
+        context_(engine_, *checker_, request.maxAttempts) {}
+
+  SceneResult run(std::uint64_t seed, std::uint64_t index) {
+    engine_.seed(sceneSeed(seed, index));
+    context_.clear();
+    for (const FixtureSpec& f : request_.fixtures) {
+      context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
+    }
+    SceneResult result;
+    result.seed = seed;
+    result.index = index;
+    result.success = request_.sampler->sample(context_, request_.reference, request_.onTop);
+    if (!result.success) {
+      result.message = context_.failure() ? context_.failure()->message : "sampling failed";
+    }
+    result.placements = std::move(context_.placements());
+    return result;
+  }
+
+ private:
+  const PreparedRequest& request_;
+  Engine engine_;
+  std::unique_ptr<CollisionChecker> checker_;
+  SampleContext context_;
+};
+
+SceneGenerator::SceneGenerator(std::shared_ptr<const SceneConfig> config)
+    : config_(std::move(config)) {
+  if (!config_ || !config_->root) {
+    throw std::invalid_argument("SceneGenerator needs a built configuration");
+  }
+}
+
+namespace {
+
+bool isUnit(const Eigen::Quaterniond& q) {
+  return q.coeffs().allFinite() && std::abs(q.norm() - 1.0) <= 1e-3;
+}
+
+}  // namespace
+
+PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
+  const SceneConfig& config = *config_;
+  PreparedRequest prepared;
+  prepared.collisionCheck = request.collisionCheck.value_or(config.collisionCheck);
+  prepared.maxAttempts = request.maxAttempts;
+  try {
+    makeCollisionChecker(prepared.collisionCheck, config.collisionMargin);
+  } catch (const ConfigError& e) {
+    throw RequestError(e.what());
+  }
+  prepared.fixtures = config.fixtures;
+
+  for (const RequestFixture& f : request.fixtures) {
+    const std::string label = "fixture '" + f.name + "'";
+    if (!isValidName(f.name)) {
+      throw RequestError("fixture name '" + f.name + "' must match [A-Za-z0-9_-]+");
+    }
+    if (config.findObject(f.name) != nullptr) {
+      throw RequestError(label + ": the name is already a configured object");
+    }
+    for (const FixtureSpec& other : prepared.fixtures) {
+      if (other.name == f.name) {
+        throw RequestError(label + ": the name is used twice");
+      }
+    }
+    if (!f.position.allFinite()) {
+      throw RequestError(label + ": position must be finite");
+    }
+    if (!isUnit(f.orientation)) {
+      throw RequestError(label + ": orientation must be a finite unit quaternion");
+    }
+    FixtureSpec spec;
+    spec.name = f.name;
+    spec.objectName = f.object;
+    spec.position = f.position;
+    spec.orientation = f.orientation.normalized();
+    if (!f.object.empty()) {
+      const ObjectModel* object = config.findObject(f.object);
+      if (object == nullptr) {
+        throw RequestError(label + ": unknown object '" + f.object + "'");
+      }
+      spec.object = std::make_shared<ObjectModel>(reorientedObject(*object, spec.orientation));
+    } else {
+      if (!f.shape) {
+        throw RequestError(label + ": give an object name or a shape");
+      }
+      try {
+        validateShape(*f.shape);
+      } catch (const std::invalid_argument& e) {
+        throw RequestError(label + ": " + e.what());
+      }
+      spec.object = std::make_shared<ObjectModel>(makeObject(f.name, {*f.shape}, spec.orientation));
+    }
+    prepared.fixtures.push_back(std::move(spec));
+  }
+
+  SampleArgs args;
+  if (request.sampler.empty()) {
+    prepared.sampler = config.root.get();
+  } else {
+    prepared.sampler = config.root->find(request.sampler, &args);
+    if (prepared.sampler == nullptr) {
+      std::vector<const PlacementSampler*> all;
+      config.root->collectSamplers(all);
+      std::string names;
+      for (const PlacementSampler* s : all) {
+        names += (names.empty() ? "" : ", ") + s->name();
+      }
+      throw RequestError("unknown sampler '" + request.sampler + "' (configured: " + names + ")");
+    }
+  }
+
+  const Reference& reference = request.reference;
+  if (reference.kind == Reference::Kind::Point && !reference.point.allFinite()) {
+    throw RequestError("reference_point must be finite");
+  }
+  if (reference.kind == Reference::Kind::Name) {
+    bool known = config.findObject(reference.name) != nullptr;
+    for (const FixtureSpec& f : prepared.fixtures) {
+      known = known || f.name == reference.name;
+    }
+    if (!known) {
+      throw RequestError("unknown reference '" + reference.name +
+                         "' (not a configured object or a fixture)");
+    }
+  }
+  // A sampler run alone keeps the sample_args its parent gives it; the call fills in the rest.
+  prepared.reference = args.reference ? *args.reference : reference;
+  prepared.onTop = args.onTop ? *args.onTop : request.onTop.value_or(true);
+  return prepared;
+}
+
+SceneResult SceneGenerator::sampleScene(const PreparedRequest& request, std::uint64_t seed,
+                                        std::uint64_t index) const {
+  Worker worker(request, config_->collisionMargin);
+  return worker.run(seed, index);
+}
+
+std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& request,
+                                                      std::uint64_t seed, std::uint64_t count,
+                                                      unsigned threads) const {
+  std::vector<SceneResult> results(count);
+  if (threads == 0) {
+    threads = std::max(1u, std::thread::hardware_concurrency());
+  }
+  threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(count, 1)));
+  std::atomic<std::uint64_t> next{0};
+  auto work = [&] {
+    Worker worker(request, config_->collisionMargin);
+    // Small chunks keep the threads balanced when some scenes take many attempts.
+    constexpr std::uint64_t kChunk = 16;
+    for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
+         begin = next.fetch_add(kChunk)) {
+      const std::uint64_t end = std::min(count, begin + kChunk);
+      for (std::uint64_t i = begin; i < end; ++i) {
+        results[i] = worker.run(seed, i);
+      }
+    }
+  };
+  if (threads <= 1) {
+    work();
+    return results;
+  }
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) {
+    pool.emplace_back(work);
+  }
+  for (std::thread& t : pool) {
+    t.join();
+  }
+  return results;
+}
+
+}  // namespace placement_samplers

@@ -1,0 +1,135 @@
+#include "placement_samplers/sequential_composite_sampler.hpp"
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/uniform_random_sampler.hpp"
+
+namespace placement_samplers {
+
+SequentialCompositeSampler::SequentialCompositeSampler(std::string name)
+    : PlacementSampler(std::move(name)) {}
+
+void SequentialCompositeSampler::checkNotPresent(const std::vector<ObjectPtr>& objects) const {
+  const std::vector<ObjectPtr> present = this->objects();
+  for (const ObjectPtr& object : objects) {
+    for (const ObjectPtr& other : present) {
+      if (other->name == object->name) {
+        throw ConfigError("sampler '" + name() + "': object '" + object->name +
+                          "' already has a sampler");
+      }
+    }
+  }
+}
+
+void SequentialCompositeSampler::appendSampler(SamplerPtr sampler, SampleArgs args) {
+  if (!sampler) {
+    throw ConfigError("sampler '" + name() + "': cannot append a null sampler");
+  }
+  std::vector<const PlacementSampler*> incoming;
+  sampler->collectSamplers(incoming);
+  for (const PlacementSampler* s : incoming) {
+    if (find(s->name(), nullptr) != nullptr) {
+      throw ConfigError("sampler '" + name() + "': a sampler named '" + s->name() +
+                        "' is already here");
+    }
+  }
+  checkNotPresent(sampler->objects());
+  children_.push_back(Child{std::move(sampler), std::move(args)});
+}
+
+PlacementSampler* SequentialCompositeSampler::findMutable(const std::string& name) {
+  return const_cast<PlacementSampler*>(find(name, nullptr));
+}
+
+void SequentialCompositeSampler::addObjectsToSampler(const std::string& samplerName,
+                                                     const std::vector<ObjectPtr>& objects) {
+  auto* target = dynamic_cast<UniformRandomSampler*>(findMutable(samplerName));
+  if (target == nullptr) {
+    throw ConfigError("sampler '" + name() + "': no uniform sub-sampler named '" + samplerName +
+                      "'");
+  }
+  checkNotPresent(objects);
+  target->addObjects(objects);
+}
+
+void SequentialCompositeSampler::hide(const std::vector<ObjectPtr>& objects) {
+  checkNotPresent(objects);
+  if (auto* existing = dynamic_cast<UniformRandomSampler*>(findMutable(kHideSamplerName))) {
+    existing->addObjects(objects);
+    return;
+  }
+  UniformSamplerParams params;
+  params.xRange = Eigen::Vector2d(-20.0, -10.0);
+  params.yRange = Eigen::Vector2d(-20.0, -10.0);
+  params.rotation = RotationSpec::fixed(0.0);
+  params.zOffset = 10.0;
+  params.ensureObjectBoundaryInRange = false;
+  params.ensureValidPlacement = false;
+  params.hides = true;
+  // Hidden objects go far away whatever reference a call gives.
+  SampleArgs args;
+  args.reference = Reference::at(Eigen::Vector3d::Zero());
+  args.onTop = true;
+  appendSampler(std::make_shared<UniformRandomSampler>(kHideSamplerName, params, objects), args);
+}
+
+bool SequentialCompositeSampler::sample(SampleContext& context, const Reference& reference,
+                                        bool onTop) const {
+  for (const Child& child : children_) {
+    const Reference& r = child.args.reference ? *child.args.reference : reference;
+    const bool top = child.args.onTop ? *child.args.onTop : onTop;
+    if (!child.sampler->sample(context, r, top)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<ObjectPtr> SequentialCompositeSampler::objects() const {
+  std::vector<ObjectPtr> out;
+  for (const Child& child : children_) {
+    const std::vector<ObjectPtr> sub = child.sampler->objects();
+    out.insert(out.end(), sub.begin(), sub.end());
+  }
+  return out;
+}
+
+void SequentialCompositeSampler::reset() {
+  for (Child& child : children_) {
+    child.sampler->reset();
+  }
+}
+
+void SequentialCompositeSampler::collectUniform(
+    std::vector<const UniformRandomSampler*>& out) const {
+  for (const Child& child : children_) {
+    child.sampler->collectUniform(out);
+  }
+}
+
+void SequentialCompositeSampler::collectSamplers(std::vector<const PlacementSampler*>& out) const {
+  out.push_back(this);
+  for (const Child& child : children_) {
+    child.sampler->collectSamplers(out);
+  }
+}
+
+const PlacementSampler* SequentialCompositeSampler::find(const std::string& name,
+                                                         SampleArgs* args) const {
+  if (const PlacementSampler* self = PlacementSampler::find(name, args)) {
+    return self;
+  }
+  for (const Child& child : children_) {
+    if (child.sampler->name() == name) {
+      if (args != nullptr) {
+        *args = child.args;
+      }
+      return child.sampler.get();
+    }
+    if (const PlacementSampler* found = child.sampler->find(name, args)) {
+      return found;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace placement_samplers
