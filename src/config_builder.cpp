@@ -246,7 +246,8 @@ CollisionMode parseCollisionMode(const ConfigNode& node) {
 
 std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
   root.checkKeys({"frame_id", "tf_prefix", "seed", "collision_check", "collision_margin",
-                  "max_attempts", "objects", "fixtures", "samplers", "hide"});
+                  "max_attempts", "objects", "fixtures", "samplers", "hide", "threads",
+                  "max_scenes_per_request", "max_request_seconds"});
   auto config = std::make_shared<SceneConfig>();
   if (const ConfigNode* n = root.get("frame_id")) {
     config->frameId = n->asString();
@@ -272,6 +273,18 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
   if (const ConfigNode* n = root.get("max_attempts")) {
     config->maxAttempts =
         static_cast<std::uint32_t>(n->asInt(1, std::numeric_limits<std::uint32_t>::max()));
+  }
+  if (const ConfigNode* n = root.get("threads")) {
+    config->threads = static_cast<unsigned>(n->asInt(1, 64));
+  }
+  if (const ConfigNode* n = root.get("max_scenes_per_request")) {
+    config->maxScenesPerRequest = static_cast<std::uint32_t>(n->asInt(1, 100000000));
+  }
+  if (const ConfigNode* n = root.get("max_request_seconds")) {
+    config->maxRequestSeconds = n->asDouble();
+    if (config->maxRequestSeconds <= 0.0) {
+      n->fail("expected a positive duration in [s]");
+    }
   }
   Builder builder(*config);
   if (const ConfigNode* n = root.get("objects")) {

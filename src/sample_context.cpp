@@ -21,7 +21,7 @@ void SampleContext::addFixture(const std::string& name, const ObjectModel* objec
   checker_.added(entries_, entries_.size() - 1);
 }
 
-void SampleContext::addPlacement(Placement placement) {
+void SampleContext::addPlacement(ObjectPlacement placement) {
   entries_.push_back(
       PlacedEntry{placement.name, placement.object, placement.position, placement.orientation, false});
   checker_.added(entries_, entries_.size() - 1);

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -18,6 +20,11 @@ class SceneGenerator::Worker {
       : request_(request),
         checker_(makeCollisionChecker(request.collisionCheck, margin)),
         context_(engine_, *checker_, request.maxAttempts) {}
+
+  void setDeadline(std::optional<std::chrono::steady_clock::time_point> deadline) {
+    context_.setDeadline(deadline);
+  }
+  bool expired() const { return context_.expired(); }
 
   SceneResult run(std::uint64_t seed, std::uint64_t index) {
     engine_.seed(sceneSeed(seed, index));
@@ -52,6 +59,15 @@ SceneGenerator::SceneGenerator(std::shared_ptr<const SceneConfig> config)
 
 namespace {
 
+std::optional<std::chrono::steady_clock::time_point> deadlineOf(const PreparedRequest& request) {
+  if (request.maxSeconds <= 0.0) {
+    return std::nullopt;
+  }
+  return std::chrono::steady_clock::now() +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+             std::chrono::duration<double>(request.maxSeconds));
+}
+
 bool isUnit(const Eigen::Quaterniond& q) {
   return q.coeffs().allFinite() && std::abs(q.norm() - 1.0) <= 1e-3;
 }
@@ -63,6 +79,10 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   PreparedRequest prepared;
   prepared.collisionCheck = request.collisionCheck.value_or(config.collisionCheck);
   prepared.maxAttempts = request.maxAttempts;
+  if (!std::isfinite(request.maxSeconds) || request.maxSeconds < 0.0) {
+    throw RequestError("the time limit must be a non-negative number of seconds");
+  }
+  prepared.maxSeconds = request.maxSeconds;
   try {
     makeCollisionChecker(prepared.collisionCheck, config.collisionMargin);
   } catch (const ConfigError& e) {
@@ -153,6 +173,7 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
 SceneResult SceneGenerator::sampleScene(const PreparedRequest& request, std::uint64_t seed,
                                         std::uint64_t index) const {
   Worker worker(request, config_->collisionMargin);
+  worker.setDeadline(deadlineOf(request));
   return worker.run(seed, index);
 }
 
@@ -165,14 +186,22 @@ std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& req
   }
   threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(count, 1)));
   std::atomic<std::uint64_t> next{0};
+  const auto deadline = deadlineOf(request);
   auto work = [&] {
     Worker worker(request, config_->collisionMargin);
+    worker.setDeadline(deadline);
     // Small chunks keep the threads balanced when some scenes take many attempts.
     constexpr std::uint64_t kChunk = 16;
     for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
          begin = next.fetch_add(kChunk)) {
       const std::uint64_t end = std::min(count, begin + kChunk);
       for (std::uint64_t i = begin; i < end; ++i) {
+        if (worker.expired()) {
+          results[i].seed = seed;
+          results[i].index = i;
+          results[i].message = "not sampled: the request ran out of time";
+          continue;
+        }
         results[i] = worker.run(seed, i);
       }
     }

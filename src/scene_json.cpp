@@ -48,7 +48,7 @@ std::string sceneToJson(const SceneResult& scene) {
                     ", \"success\": " + (scene.success ? "true" : "false") +
                     ", \"message\": " + jsonString(scene.message) + ", \"placements\": [";
   for (std::size_t i = 0; i < scene.placements.size(); ++i) {
-    const Placement& p = scene.placements[i];
+    const ObjectPlacement& p = scene.placements[i];
     out += i == 0 ? "{" : ", {";
     out += "\"name\": " + jsonString(p.name) + ", \"sampler\": " + jsonString(p.sampler) +
            ", \"position\": [";

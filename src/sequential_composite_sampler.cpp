@@ -126,6 +126,15 @@ const PlacementSampler* SequentialCompositeSampler::find(const std::string& name
       return child.sampler.get();
     }
     if (const PlacementSampler* found = child.sampler->find(name, args)) {
+      // In a full run this composite's own sample_args fill in what the inner ones leave unset.
+      if (args != nullptr) {
+        if (!args->reference) {
+          args->reference = child.args.reference;
+        }
+        if (!args->onTop) {
+          args->onTop = child.args.onTop;
+        }
+      }
       return found;
     }
   }

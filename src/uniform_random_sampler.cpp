@@ -168,6 +168,17 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
   candidate.object = &object;
   candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
+    if ((attempt & 1023u) == 0 && context.expired()) {
+      Failure failure;
+      failure.object = object.name;
+      failure.sampler = name();
+      failure.attempts = attempt - 1;
+      failure.message = "stopped placing object '" + object.name + "' with sampler '" + name() +
+                        "' after " + std::to_string(attempt - 1) +
+                        " attempts: the request ran out of time";
+      context.fail(std::move(failure));
+      return false;
+    }
     candidate.position.x() = uniform(engine, entry.x[0], entry.x[1]) + base.x();
     candidate.position.y() = uniform(engine, entry.y[0], entry.y[1]) + base.y();
     if (orientFirst) {
@@ -183,7 +194,7 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
     if (!orientFirst) {
       candidate.orientation = sampleOrientation(engine, object);
     }
-    Placement placement;
+    ObjectPlacement placement;
     placement.name = object.name;
     placement.sampler = name();
     placement.position = candidate.position;

@@ -10,7 +10,7 @@
 namespace placement_samplers {
 
 /// One sampled object pose.
-struct Placement {
+struct ObjectPlacement {
   std::string name;     ///< object name
   std::string sampler;  ///< the uniform sampler that placed it
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< object origin [m]
@@ -36,7 +36,7 @@ struct SceneResult {
   std::uint64_t index = 0;  ///< the scene index within the request
   bool success = false;
   std::string message;                ///< empty on success
-  std::vector<Placement> placements;  ///< new placements in sampling order (no fixtures)
+  std::vector<ObjectPlacement> placements;  ///< new placements in sampling order (no fixtures)
 };
 
 }  // namespace placement_samplers

@@ -58,7 +58,8 @@ class PlacementSampler {
   virtual void collectUniform(std::vector<const UniformRandomSampler*>& out) const = 0;
 
   /// The sampler called @p name in this tree (this one included), or nullptr. @p args receives
-  /// the sample_args its parent gives it (empty for this one).
+  /// the sample_args it gets in a full run: its parent's, completed by those of the composites
+  /// above (empty for this one).
   virtual const PlacementSampler* find(const std::string& name, SampleArgs* args) const;
   /// This sampler and every sampler below it, depth first in sampling order.
   virtual void collectSamplers(std::vector<const PlacementSampler*>& out) const;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -25,7 +26,7 @@ class SampleContext {
   void addFixture(const std::string& name, const ObjectModel* object,
                   const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation);
   /// Records a new placement and makes it an obstacle for the following ones.
-  void addPlacement(Placement placement);
+  void addPlacement(ObjectPlacement placement);
 
   /// The fixture or placed object called @p name, or nullptr.
   const PlacedEntry* find(const std::string& name) const;
@@ -42,11 +43,17 @@ class SampleContext {
   /// Records why the scene failed; the sampling stops.
   void fail(Failure failure) { failure_ = std::move(failure); }
 
+  /// Sampling stops with a failure once @p deadline has passed (checked every 1024 attempts).
+  void setDeadline(std::optional<std::chrono::steady_clock::time_point> deadline) {
+    deadline_ = deadline;
+  }
+  bool expired() const { return deadline_ && std::chrono::steady_clock::now() > *deadline_; }
+
   Engine& engine() { return engine_; }
   std::uint32_t maxAttempts() const { return maxAttempts_; }
   const std::vector<PlacedEntry>& entries() const { return entries_; }
-  const std::vector<Placement>& placements() const { return placements_; }
-  std::vector<Placement>& placements() { return placements_; }
+  const std::vector<ObjectPlacement>& placements() const { return placements_; }
+  std::vector<ObjectPlacement>& placements() { return placements_; }
   const std::optional<Failure>& failure() const { return failure_; }
 
  private:
@@ -54,9 +61,10 @@ class SampleContext {
   CollisionChecker& checker_;
   std::uint32_t maxAttempts_;
   std::vector<PlacedEntry> entries_;
-  std::vector<Placement> placements_;
+  std::vector<ObjectPlacement> placements_;
   std::vector<std::uint32_t> blockerCounts_;
   std::optional<Failure> failure_;
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
 };
 
 }  // namespace placement_samplers

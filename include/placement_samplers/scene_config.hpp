@@ -35,6 +35,11 @@ struct SceneConfig {
   std::vector<std::string> hidden;     ///< objects placed far away by hide()
   std::shared_ptr<SequentialCompositeSampler> root;  ///< the root composite, named "root"
 
+  // Settings of the node's service (the CLI has flags of its own).
+  unsigned threads = 2;                       ///< service calls served at once
+  std::uint32_t maxScenesPerRequest = 10000;  ///< larger num_scenes are refused
+  double maxRequestSeconds = 10.0;            ///< a request stops after this long [s]
+
   /// The configured object called @p name, or nullptr.
   const ObjectModel* findObject(const std::string& name) const;
   ObjectPtr findObjectPtr(const std::string& name) const;

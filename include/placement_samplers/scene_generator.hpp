@@ -30,6 +30,7 @@ struct SampleRequest {
   std::optional<bool> onTop;         ///< unset = true, as robosuite
   std::optional<CollisionMode> collisionCheck;
   std::uint32_t maxAttempts = 0;     ///< 0 = as configured
+  double maxSeconds = 0.0;           ///< time limit of the whole request [s]; 0 = none
 };
 
 /// A request checked against the configuration, ready to sample any number of scenes.
@@ -39,6 +40,7 @@ struct PreparedRequest {
   bool onTop = true;
   CollisionMode collisionCheck = CollisionMode::Radius;
   std::uint32_t maxAttempts = 0;
+  double maxSeconds = 0.0;
   std::vector<FixtureSpec> fixtures;  ///< configured fixtures, then the request's
 };
 
@@ -59,7 +61,8 @@ class SceneGenerator {
                           std::uint64_t index) const;
 
   /// Scenes 0 .. count-1 over @p threads threads (0 = one per core); the result does not depend
-  /// on the thread count.
+  /// on the thread count. When the request's time limit passes, the scene under way fails and
+  /// the ones not started come back failed with "not sampled".
   std::vector<SceneResult> sampleScenes(const PreparedRequest& request, std::uint64_t seed,
                                         std::uint64_t count, unsigned threads = 1) const;
 

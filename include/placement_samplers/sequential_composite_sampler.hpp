@@ -39,14 +39,16 @@ class SequentialCompositeSampler : public PlacementSampler {
   const PlacementSampler* find(const std::string& name, SampleArgs* args) const override;
   void collectSamplers(std::vector<const PlacementSampler*>& out) const override;
 
-  std::size_t size() const { return children_.size(); }
-
- private:
+  /// A sub-sampler and the sample_args given with it.
   struct Child {
     SamplerPtr sampler;
     SampleArgs args;
   };
 
+  const std::vector<Child>& children() const { return children_; }
+  std::size_t size() const { return children_.size(); }
+
+ private:
   PlacementSampler* findMutable(const std::string& name);
   void checkNotPresent(const std::vector<ObjectPtr>& objects) const;
 

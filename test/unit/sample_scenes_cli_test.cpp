@@ -1,1 +1,218 @@
+// The sample_scenes tool run in-process: JSON lines, exit codes, flags and reproducibility.
+
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "placement_samplers/sample_scenes_cli.hpp"
+
+namespace placement_samplers {
+namespace {
+
+const std::string kDefaultConfig = std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/config/default.yaml";
+
+// A slab over the whole table: the plate never fits.
+const std::string kBlockedConfig = R"(
+objects:
+  slab_top: {shape: box, size: [2, 2, 0.5]}
+  plate: {shape: cylinder, radius: 0.09, length: 0.02}
+fixtures:
+  - {name: slab, object: slab_top, position: [0, 0, 0]}
+max_attempts: 20
+samplers:
+  - {name: PlateSampler, objects: [plate], x_range: [-0.3, 0.3], y_range: [-0.3, 0.3]}
+)";
+
+struct CliRun {
+  int status = -1;
+  std::string out;
+  std::string err;
+  std::vector<std::string> lines;
+};
+
+CliRun run(const std::vector<std::string>& args) {
+  std::ostringstream out;
+  std::ostringstream err;
+  CliRun r;
+  r.status = runSampleScenes(args, out, err);
+  r.out = out.str();
+  r.err = err.str();
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    r.lines.push_back(line);
+  }
+  return r;
+}
+
+/// A configuration file in the test temporary directory, removed when the test ends.
+struct TempConfig {
+  TempConfig(const std::string& name, const std::string& text)
+      : path(testing::TempDir() + "sample_scenes_cli_" + std::to_string(getpid()) + "_" + name) {
+    std::ofstream file(path);
+    file << text;
+  }
+  ~TempConfig() { std::remove(path.c_str()); }
+  std::string path;
+};
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+TEST(SampleScenesCli, OneJsonLinePerScene) {
+  const CliRun r = run({"--config", kDefaultConfig, "--seed", "7", "--scenes", "5", "--threads", "1"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  ASSERT_EQ(r.lines.size(), 5u);
+  for (std::size_t i = 0; i < r.lines.size(); ++i) {
+    const std::string& line = r.lines[i];
+    EXPECT_EQ(line.rfind("{\"scene\": " + std::to_string(i) + ", \"seed\": 7, \"success\": true, "
+                         "\"message\": \"\", \"placements\": [",
+                         0),
+              0u)
+        << line;
+    EXPECT_EQ(line.substr(line.size() - 2), "]}");
+    // plate, cup, cube, can, ball and the hidden pill.
+    EXPECT_EQ(count(line, "\"name\": "), 6u) << line;
+  }
+}
+
+TEST(SampleScenesCli, SameSeedSameOutput) {
+  const std::vector<std::string> args = {"--config", kDefaultConfig, "--seed", "11", "--scenes", "4"};
+  const CliRun a = run(args);
+  const CliRun b = run(args);
+  EXPECT_EQ(a.status, 0);
+  EXPECT_EQ(a.out, b.out);
+  const CliRun c = run({"--config", kDefaultConfig, "--seed", "12", "--scenes", "4"});
+  EXPECT_NE(a.out, c.out);
+}
+
+TEST(SampleScenesCli, SceneIndependentOfScenesAndThreads) {
+  const CliRun few = run({"--config", kDefaultConfig, "--seed", "5", "--scenes", "3", "--threads", "1"});
+  const CliRun many = run({"--config", kDefaultConfig, "--seed", "5", "--scenes", "40", "--threads", "2"});
+  ASSERT_EQ(few.lines.size(), 3u);
+  ASSERT_EQ(many.lines.size(), 40u);
+  for (std::size_t i = 0; i < few.lines.size(); ++i) {
+    EXPECT_EQ(few.lines[i], many.lines[i]);
+  }
+}
+
+TEST(SampleScenesCli, SeedFromTheConfiguration) {
+  const TempConfig config("seeded.yaml", "seed: 99\n");
+  const CliRun r = run({"--config", config.path});
+  EXPECT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(r.lines.size(), 1u);
+  EXPECT_NE(r.lines[0].find("\"seed\": 99,"), std::string::npos) << r.lines[0];
+}
+
+TEST(SampleScenesCli, FailingSceneExitsOne) {
+  const TempConfig config("blocked.yaml", kBlockedConfig);
+  const CliRun r = run({"--config", config.path, "--seed", "1", "--scenes", "2"});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  ASSERT_EQ(r.lines.size(), 2u);
+  EXPECT_NE(r.lines[0].find("\"success\": false, \"message\": \"could not place object 'plate' with "
+                            "sampler 'PlateSampler' in 20 attempts: 20 of them overlapped fixture "
+                            "'slab'\""),
+            std::string::npos)
+      << r.lines[0];
+}
+
+TEST(SampleScenesCli, MaxAttemptsFlagOverridesTheConfiguration) {
+  const TempConfig config("blocked_attempts.yaml", kBlockedConfig);
+  const CliRun r = run({"--config", config.path, "--seed", "1", "--max-attempts", "3"});
+  EXPECT_EQ(r.status, 1);
+  ASSERT_EQ(r.lines.size(), 1u);
+  EXPECT_NE(r.lines[0].find("in 3 attempts: 3 of them overlapped fixture 'slab'"), std::string::npos)
+      << r.lines[0];
+}
+
+TEST(SampleScenesCli, SamplerFlagRunsOneSubSampler) {
+  const CliRun r = run({"--config", kDefaultConfig, "--seed", "3", "--scenes", "3", "--sampler",
+                     "TableSampler"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(r.lines.size(), 3u);
+  for (const std::string& line : r.lines) {
+    EXPECT_EQ(count(line, "\"name\": "), 3u) << line;
+    EXPECT_EQ(count(line, "\"sampler\": \"TableSampler\""), 3u) << line;
+  }
+  const CliRun bad = run({"--config", kDefaultConfig, "--sampler", "ShelfSampler"});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_TRUE(bad.out.empty());
+  EXPECT_EQ(bad.err,
+            "sample_scenes: unknown sampler 'ShelfSampler' (configured: root, PlateSampler, "
+            "CupSampler, TableSampler, HideSampler)\n");
+}
+
+TEST(SampleScenesCli, MissingConfigFileExitsTwo) {
+  const std::string path = testing::TempDir() + "sample_scenes_cli_does_not_exist.yaml";
+  const CliRun r = run({"--config", path});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(r.err, "sample_scenes: " + path + ": cannot read the configuration file\n");
+}
+
+TEST(SampleScenesCli, BadConfigExitsTwoNamingTheFile) {
+  const TempConfig typo("typo.yaml", "samplers:\n  - {name: S, x_rnage: [0, 1]}\n");
+  const CliRun r = run({"--config", typo.path});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(r.err, "sample_scenes: " + typo.path +
+                       ": samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, "
+                       "x_range, y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
+                       "ensure_valid_placement, reference_pos, z_offset, sample_args, max_attempts)\n");
+  const TempConfig broken("broken.yaml", "samplers: [1, 2\nseed: 3\n");
+  const CliRun s = run({"--config", broken.path});
+  EXPECT_EQ(s.status, 2);
+  EXPECT_EQ(s.err.rfind("sample_scenes: " + broken.path + ": invalid YAML at line ", 0), 0u) << s.err;
+}
+
+TEST(SampleScenesCli, UsageErrorsExitTwo) {
+  const CliRun unknown = run({"--config", kDefaultConfig, "--bogus", "1"});
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_TRUE(unknown.out.empty());
+  EXPECT_EQ(unknown.err.rfind("sample_scenes: unknown argument '--bogus'\nusage: sample_scenes", 0), 0u)
+      << unknown.err;
+  const CliRun trailing = run({"--config", kDefaultConfig, "--bogus"});
+  EXPECT_EQ(trailing.status, 2);
+  EXPECT_EQ(trailing.err.rfind("sample_scenes: unknown argument '--bogus'\n", 0), 0u) << trailing.err;
+  const CliRun noValue = run({"--config", kDefaultConfig, "--seed"});
+  EXPECT_EQ(noValue.status, 2);
+  EXPECT_EQ(noValue.err.rfind("sample_scenes: --seed: missing value\n", 0), 0u) << noValue.err;
+  const CliRun noConfig = run({"--seed", "1"});
+  EXPECT_EQ(noConfig.status, 2);
+  EXPECT_EQ(noConfig.err.rfind("sample_scenes: --config FILE is required\n", 0), 0u) << noConfig.err;
+  const CliRun badNumber = run({"--config", kDefaultConfig, "--scenes", "-3"});
+  EXPECT_EQ(badNumber.status, 2);
+  EXPECT_EQ(badNumber.err.rfind("sample_scenes: --scenes: expected a non-negative integer, got '-3'\n", 0),
+            0u)
+      << badNumber.err;
+  const CliRun tooLarge = run({"--config", kDefaultConfig, "--max-attempts", "4294967296"});
+  EXPECT_EQ(tooLarge.status, 2);
+  EXPECT_EQ(tooLarge.err.rfind(
+                "sample_scenes: --max-attempts: 4294967296 is out of range (at most 4294967295)\n", 0),
+            0u)
+      << tooLarge.err;
+  const CliRun badMode = run({"--config", kDefaultConfig, "--collision-check", "exact"});
+  EXPECT_EQ(badMode.status, 2);
+  EXPECT_NE(badMode.err.find("expected radius, fcl or radius_and_fcl, got 'exact'"), std::string::npos)
+      << badMode.err;
+}
+
+TEST(SampleScenesCli, Help) {
+  const CliRun r = run({"--help"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("usage: sample_scenes --config FILE", 0), 0u) << r.out;
+}
+
+}  // namespace
+}  // namespace placement_samplers

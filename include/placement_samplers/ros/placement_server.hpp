@@ -1,0 +1,55 @@
+#pragma once
+
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+
+#include <memory>
+#include <mutex>
+#include <random>
+
+#include "placement_samplers/SamplePlacements.h"
+#include "placement_samplers/scene_generator.hpp"
+
+namespace placement_samplers {
+namespace ros_interface {
+
+/// The placement_server node: reads the configuration from its private namespace, serves
+/// ~sample_placements and ~reload, broadcasts the first scene of each call as static tf frames
+/// and publishes ~markers. It converts and wires; the sampling is the core library's.
+class PlacementServer {
+ public:
+  /// @param privateHandle the node's private namespace, where the configuration lives
+  explicit PlacementServer(const ros::NodeHandle& privateHandle);
+
+  /// Reads and builds the configuration, then advertises the services and topics.
+  /// @throw ConfigError naming the full parameter path when the configuration is invalid
+  void start();
+
+  /// Service calls served at once (the configuration's `threads`).
+  unsigned threads() const;
+
+  bool sample(SamplePlacements::Request& request, SamplePlacements::Response& response);
+  bool reload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+
+ private:
+  std::shared_ptr<const SceneGenerator> generator() const;
+  std::uint64_t nextSeed();
+  void publish(const SceneGenerator& generator, const PreparedRequest& request,
+               const SceneResult& scene);
+
+  ros::NodeHandle privateHandle_;
+  ros::ServiceServer sampleService_;
+  ros::ServiceServer reloadService_;
+  ros::Publisher markerPublisher_;
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> broadcaster_;
+
+  mutable std::mutex generatorMutex_;  // guards generator_: a reload swaps it whole
+  std::shared_ptr<const SceneGenerator> generator_;
+  std::mutex seedMutex_;  // guards seedStream_
+  std::mt19937_64 seedStream_;
+  std::mutex publishMutex_;  // one scene's frames and markers at a time
+};
+
+}  // namespace ros_interface
+}  // namespace placement_samplers

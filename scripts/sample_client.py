@@ -1,0 +1,48 @@
+#!/usr/bin/python3
+"""Calls the placement service once and prints the scene.
+
+usage: rosrun placement_samplers sample_client.py [--service NAME] [--seed S]
+       [--scenes K] [--sampler NAME] [--dry-run]
+"""
+import argparse
+import sys
+
+import rospy
+from placement_samplers.srv import SamplePlacements, SamplePlacementsRequest
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--service", default="/placement_server/sample_placements")
+    parser.add_argument("--seed", type=int, default=0, help="0 = the node picks one")
+    parser.add_argument("--scenes", type=int, default=1)
+    parser.add_argument("--sampler", default="", help="'' = the root composite")
+    parser.add_argument("--dry-run", action="store_true", help="broadcast nothing")
+    parser.add_argument("--timeout", type=float, default=30.0, help="wait for the service [s]")
+    args = parser.parse_args(rospy.myargv()[1:])
+
+    rospy.init_node("placement_sample_client", anonymous=True)
+    try:
+        rospy.wait_for_service(args.service, timeout=args.timeout)
+    except rospy.ROSException:
+        print("service %s is not available" % args.service, file=sys.stderr)
+        return 2
+    call = rospy.ServiceProxy(args.service, SamplePlacements)
+    request = SamplePlacementsRequest(seed=args.seed, num_scenes=args.scenes,
+                                      sampler=args.sampler, dry_run=args.dry_run)
+    response = call(request)
+    print("success: %s  seed: %d  frame: %s" % (response.success, response.seed, response.frame_id))
+    if response.message:
+        print("message: %s" % response.message)
+    for index, scene in enumerate(response.scenes):
+        print("scene %d" % index)
+        for p in scene.placements:
+            q = p.pose.orientation
+            print("  %-12s %-14s xyz [% .4f % .4f % .4f]  xyzw [% .3f % .3f % .3f % .3f]  attempts %d"
+                  % (p.name, p.sampler, p.pose.position.x, p.pose.position.y, p.pose.position.z,
+                     q.x, q.y, q.z, q.w, p.attempts))
+    return 0 if response.success else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,65 @@
+#include "placement_samplers/ros/param_reader.hpp"
+
+#include "placement_samplers/errors.hpp"
+
+namespace placement_samplers {
+namespace ros_interface {
+namespace {
+
+void convert(XmlRpc::XmlRpcValue& in, ConfigNode& out) {
+  switch (in.getType()) {
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      out.setBool(static_cast<bool>(in));
+      return;
+    case XmlRpc::XmlRpcValue::TypeInt:
+      out.setInt(static_cast<int>(in));
+      return;
+    case XmlRpc::XmlRpcValue::TypeDouble:
+      out.setDouble(static_cast<double>(in));
+      return;
+    case XmlRpc::XmlRpcValue::TypeString:
+      out.setString(static_cast<std::string>(in));
+      return;
+    case XmlRpc::XmlRpcValue::TypeArray:
+      out.setList();
+      for (int i = 0; i < in.size(); ++i) {
+        convert(in[i], out.append());
+      }
+      return;
+    case XmlRpc::XmlRpcValue::TypeStruct:
+      out.setMap();
+      for (auto& entry : in) {
+        convert(entry.second, out.add(entry.first));
+      }
+      return;
+    case XmlRpc::XmlRpcValue::TypeInvalid:
+      out.setNull();
+      return;
+    default:
+      out.fail("expected a boolean, number, string, list or map, got a date or binary value");
+  }
+}
+
+}  // namespace
+
+ConfigNode toConfigNode(XmlRpc::XmlRpcValue& value, const std::string& path) {
+  ConfigNode root = ConfigNode::makeRoot(path, '/');
+  convert(value, root);
+  return root;
+}
+
+ConfigNode readParameters(const ros::NodeHandle& nodeHandle) {
+  const std::string ns = nodeHandle.getNamespace();
+  XmlRpc::XmlRpcValue value;
+  if (!nodeHandle.getParam(ns, value) || value.getType() != XmlRpc::XmlRpcValue::TypeStruct ||
+      value.size() == 0) {
+    throw ConfigError(ns +
+                      ": no configuration parameters here; load one first, for example with "
+                      "`rosparam load config/default.yaml " +
+                      ns + "` or launch/placement_server.launch");
+  }
+  return toConfigNode(value, ns);
+}
+
+}  // namespace ros_interface
+}  // namespace placement_samplers

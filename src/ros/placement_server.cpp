@@ -1,0 +1,133 @@
+#include "placement_samplers/ros/placement_server.hpp"
+
+#include <sstream>
+
+#include "placement_samplers/config_builder.hpp"
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/random.hpp"
+#include "placement_samplers/ros/conversions.hpp"
+#include "placement_samplers/ros/param_reader.hpp"
+#include "placement_samplers/ros/scene_markers.hpp"
+
+namespace placement_samplers {
+namespace ros_interface {
+
+PlacementServer::PlacementServer(const ros::NodeHandle& privateHandle)
+    : privateHandle_(privateHandle) {}
+
+void PlacementServer::start() {
+  auto generator = std::make_shared<const SceneGenerator>(buildSceneConfig(readParameters(privateHandle_)));
+  const std::uint64_t seed = generator->config().seed;
+  seedStream_.seed(seed != 0 ? seed : randomSeed());
+  {
+    std::lock_guard<std::mutex> lock(generatorMutex_);
+    generator_ = generator;
+  }
+  broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+  markerPublisher_ = privateHandle_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+  sampleService_ = privateHandle_.advertiseService("sample_placements", &PlacementServer::sample, this);
+  reloadService_ = privateHandle_.advertiseService("reload", &PlacementServer::reload, this);
+  ROS_INFO_STREAM("placement_server: " << generator->config().objects.size() << " objects, "
+                                       << generator->config().fixtures.size()
+                                       << " fixtures; serving "
+                                       << sampleService_.getService());
+}
+
+unsigned PlacementServer::threads() const { return generator()->config().threads; }
+
+std::shared_ptr<const SceneGenerator> PlacementServer::generator() const {
+  std::lock_guard<std::mutex> lock(generatorMutex_);
+  return generator_;
+}
+
+std::uint64_t PlacementServer::nextSeed() {
+  std::lock_guard<std::mutex> lock(seedMutex_);
+  std::uint64_t seed = 0;
+  while (seed == 0) {
+    seed = seedStream_();
+  }
+  return seed;
+}
+
+bool PlacementServer::sample(SamplePlacements::Request& request,
+                             SamplePlacements::Response& response) {
+  // Every error becomes an answer: roscpp would turn an exception into a bare failure.
+  try {
+    const std::shared_ptr<const SceneGenerator> generator = this->generator();
+    const SceneConfig& config = generator->config();
+    response.frame_id = config.frameId;
+    const std::uint32_t count = std::max<std::uint32_t>(request.num_scenes, 1);
+    if (count > config.maxScenesPerRequest) {
+      throw RequestError("num_scenes " + std::to_string(count) + " exceeds max_scenes_per_request (" +
+                         std::to_string(config.maxScenesPerRequest) + ")");
+    }
+    SampleRequest sampleRequest = toSampleRequest(request);
+    sampleRequest.maxSeconds = config.maxRequestSeconds;
+    const PreparedRequest prepared = generator->prepare(sampleRequest);
+    const std::uint64_t seed = request.seed != 0 ? request.seed : nextSeed();
+    response.seed = seed;
+    // Threads pay off only for large batches; the answer is the same either way.
+    const unsigned threads = count >= 256 ? 0 : 1;
+    const std::vector<SceneResult> scenes = generator->sampleScenes(prepared, seed, count, threads);
+
+    response.success = true;
+    std::size_t failed = 0;
+    response.scenes.reserve(scenes.size());
+    for (const SceneResult& scene : scenes) {
+      response.scenes.push_back(toSceneMsg(scene));
+      if (!scene.success) {
+        if (failed == 0) {
+          response.message = count == 1 ? scene.message
+                                        : "scene " + std::to_string(scene.index) + ": " + scene.message;
+        }
+        ++failed;
+      }
+    }
+    if (failed > 0) {
+      response.success = false;
+      if (failed > 1) {
+        response.message += " (" + std::to_string(failed) + " of " + std::to_string(count) +
+                            " scenes failed)";
+      }
+    } else if (!request.dry_run) {
+      publish(*generator, prepared, scenes.front());
+    }
+  } catch (const std::exception& e) {
+    response.success = false;
+    response.message = e.what();
+    response.scenes.clear();
+  }
+  return true;
+}
+
+void PlacementServer::publish(const SceneGenerator& generator, const PreparedRequest& request,
+                              const SceneResult& scene) {
+  const SceneConfig& config = generator.config();
+  const ros::Time now = ros::Time::now();
+  std::lock_guard<std::mutex> lock(publishMutex_);
+  broadcaster_->sendTransform(toTransforms(scene, request.fixtures, config.frameId, config.tfPrefix, now));
+  markerPublisher_.publish(makeSceneMarkers(request, scene, config.frameId, now));
+}
+
+bool PlacementServer::reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  try {
+    auto generator =
+        std::make_shared<const SceneGenerator>(buildSceneConfig(readParameters(privateHandle_)));
+    {
+      std::lock_guard<std::mutex> lock(generatorMutex_);
+      generator_ = generator;
+    }
+    response.success = true;
+    response.message = "configuration reloaded: " + std::to_string(generator->config().objects.size()) +
+                       " objects, " + std::to_string(generator->config().fixtures.size()) + " fixtures";
+    ROS_INFO_STREAM("placement_server: " << response.message);
+  } catch (const std::exception& e) {
+    response.success = false;
+    response.message = std::string("configuration refused, the previous one stays: ") + e.what();
+    ROS_ERROR_STREAM("placement_server: " << response.message);
+  }
+  return true;
+}
+
+}  // namespace ros_interface
+}  // namespace placement_samplers
