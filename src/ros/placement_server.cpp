@@ -27,6 +27,7 @@ void PlacementServer::start() {
   markerPublisher_ = privateHandle_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   sampleService_ = privateHandle_.advertiseService("sample_placements", &PlacementServer::sample, this);
   reloadService_ = privateHandle_.advertiseService("reload", &PlacementServer::reload, this);
+  pingService_ = privateHandle_.advertiseService("ping", &PlacementServer::ping, this);
   ROS_INFO_STREAM("placement_server: " << generator->config().objects.size() << " objects, "
                                        << generator->config().fixtures.size()
                                        << " fixtures; serving "

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <ros/ros.h>
+#include <std_srvs/Empty.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
@@ -31,6 +32,8 @@ class PlacementServer {
 
   bool sample(SamplePlacements::Request& request, SamplePlacements::Response& response);
   bool reload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  /// Does nothing: a baseline for measuring the cost of a service call.
+  bool ping(std_srvs::Empty::Request&, std_srvs::Empty::Response&) { return true; }
 
  private:
   std::shared_ptr<const SceneGenerator> generator() const;
@@ -41,6 +44,7 @@ class PlacementServer {
   ros::NodeHandle privateHandle_;
   ros::ServiceServer sampleService_;
   ros::ServiceServer reloadService_;
+  ros::ServiceServer pingService_;
   ros::Publisher markerPublisher_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> broadcaster_;
 
