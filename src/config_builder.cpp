@@ -2,6 +2,7 @@
 
 #include <limits>
 #include <set>
+#include <sstream>
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/object_config.hpp"
@@ -96,9 +97,12 @@ class Builder {
     if (name.empty()) {
       n.fail("expected a non-empty sampler name");
     }
-    if (!samplerNames_.insert(name).second || name == kRootSamplerName ||
-        name == SequentialCompositeSampler::kHideSamplerName) {
-      n.fail("sampler name '" + name + "' is used twice or reserved");
+    if (name == kRootSamplerName || name == SequentialCompositeSampler::kHideSamplerName) {
+      n.fail("sampler name '" + name + "' is reserved (" + kRootSamplerName + " is the root, " +
+             SequentialCompositeSampler::kHideSamplerName + " places the hidden objects)");
+    }
+    if (!samplerNames_.insert(name).second) {
+      n.fail("sampler name '" + name + "' is already used by another sampler");
     }
     return name;
   }
@@ -205,7 +209,19 @@ class Builder {
       }
     }
     std::shared_ptr<UniformRandomSampler> sampler;
-    wrap(s, [&] { sampler = std::make_shared<UniformRandomSampler>(name, p, objects); });
+    try {
+      sampler = std::make_shared<UniformRandomSampler>(name, p, objects);
+    } catch (const ConfigError& e) {
+      // Point at the parameter the sampler complains about when it names one.
+      const std::string message = e.what();
+      const ConfigNode* where = &s;
+      for (const char* key : {"x_range", "y_range", "rotation", "max_attempts"}) {
+        if (message.find(std::string("': ") + key + " ") != std::string::npos && s.get(key)) {
+          where = s.get(key);
+        }
+      }
+      where->fail(message);
+    }
     for (const ObjectPtr& o : objects) {
       available_.insert(o->name);
     }
@@ -215,8 +231,9 @@ class Builder {
   static Eigen::Vector2d range(const ConfigNode& n) {
     const std::vector<double> v = n.asNumbers(2);
     if (v[0] > v[1]) {
-      n.fail("expected [min, max] with min <= max, got [" + std::to_string(v[0]) + ", " +
-             std::to_string(v[1]) + "]");
+      std::ostringstream out;
+      out << "expected [min, max] with min <= max, got [" << v[0] << ", " << v[1] << "]";
+      n.fail(out.str());
     }
     return Eigen::Vector2d(v[0], v[1]);
   }

@@ -12,7 +12,9 @@ namespace {
 double positive(const ConfigNode& node) {
   const double v = node.asDouble();
   if (v <= 0.0) {
-    node.fail("expected a positive size in [m], got " + std::to_string(v));
+    std::ostringstream out;
+    out << "expected a positive size in [m], got " << v;
+    node.fail(out.str());
   }
   return v;
 }
@@ -26,7 +28,10 @@ Shape parsePrimitive(const ConfigNode& node) {
     const ConfigNode& size = node.at("size");
     const Eigen::Vector3d s = size.asVector3();
     if ((s.array() <= 0.0).any()) {
-      size.fail("expected three positive extents [x, y, z] in [m]");
+      std::ostringstream out;
+      out << "expected three positive extents [x, y, z] in [m], got [" << s.x() << ", " << s.y()
+          << ", " << s.z() << "]";
+      size.fail(out.str());
     }
     return Shape::box(s);
   }
@@ -61,8 +66,9 @@ Eigen::Quaterniond parseQuaternion(const ConfigNode& node) {
 void validateShape(const Shape& shape) {
   auto check = [](double v, const char* what) {
     if (!std::isfinite(v) || v <= 0.0) {
-      throw std::invalid_argument(std::string(what) + " must be finite and positive, got " +
-                                  std::to_string(v));
+      std::ostringstream out;
+      out << what << " must be finite and positive, got " << v;
+      throw std::invalid_argument(out.str());
     }
   };
   switch (shape.type) {

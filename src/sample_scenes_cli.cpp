@@ -111,8 +111,9 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       node.add("collision_check").setString(mode);
       try {
         request.collisionCheck = parseCollisionMode(node.at("collision_check"));
-      } catch (const ConfigError& e) {
-        err << "sample_scenes: --" << e.what() << "\n";
+      } catch (const ConfigError&) {
+        err << "sample_scenes: --collision-check: expected radius, fcl or radius_and_fcl, got '"
+            << mode << "'\n";
         return 2;
       }
     }

@@ -269,13 +269,13 @@ TEST(ConfigBuilder, ObjectShapeErrors) {
 
 TEST(ConfigBuilder, NonPositiveSizes) {
   EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [0.1, 0, 0.1]}\n"),
-            "objects.cube.size: expected three positive extents [x, y, z] in [m]");
+            "objects.cube.size: expected three positive extents [x, y, z] in [m], got [0.1, 0, 0.1]");
   EXPECT_EQ(buildError("objects:\n  can: {shape: cylinder, radius: -0.1, length: 1}\n"),
-            "objects.can.radius: expected a positive size in [m], got -0.100000");
+            "objects.can.radius: expected a positive size in [m], got -0.1");
   EXPECT_EQ(buildError("objects:\n  pill: {shape: capsule, radius: 0.1, length: 0}\n"),
-            "objects.pill.length: expected a positive size in [m], got 0.000000");
+            "objects.pill.length: expected a positive size in [m], got 0");
   EXPECT_EQ(buildError("objects:\n  ball: {shape: sphere, radius: 0}\n"),
-            "objects.ball.radius: expected a positive size in [m], got 0.000000");
+            "objects.ball.radius: expected a positive size in [m], got 0");
   EXPECT_EQ(buildError("objects:\n  ball: {shape: sphere, radius: 1, horizontal_radius: -1}\n"),
             "objects.ball.horizontal_radius: expected a non-negative radius in [m]");
 }
@@ -351,15 +351,15 @@ TEST(ConfigBuilder, FixtureErrors) {
 
 TEST(ConfigBuilder, ReversedRange) {
   EXPECT_EQ(buildError("samplers:\n  - {name: S, x_range: [0.3, -0.3]}\n"),
-            "samplers[0].x_range: expected [min, max] with min <= max, got [0.300000, -0.300000]");
+            "samplers[0].x_range: expected [min, max] with min <= max, got [0.3, -0.3]");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, y_range: [1, 0]}\n"),
-            "samplers[0].y_range: expected [min, max] with min <= max, got [1.000000, 0.000000]");
+            "samplers[0].y_range: expected [min, max] with min <= max, got [1, 0]");
 }
 
 TEST(ConfigBuilder, EmptyShrunkRegion) {
   EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: S, objects: [ball], x_range: [-0.04, 0.04], "
                                   "y_range: [-1, 1]}\n"),
-            "samplers[0]: sampler 'S': x_range [-0.04, 0.04] leaves no room for object 'ball' "
+            "samplers[0].x_range: sampler 'S': x_range [-0.04, 0.04] leaves no room for object 'ball' "
             "(horizontal radius 0.05 m) with ensure_object_boundary_in_range on: the range must be "
             "at least 0.1 m wide");
   // Without the shrink the same region is fine.
@@ -439,13 +439,15 @@ TEST(ConfigBuilder, DuplicateObjects) {
 
 TEST(ConfigBuilder, DuplicateOrReservedSamplerName) {
   EXPECT_EQ(buildError("samplers:\n  - {name: S}\n  - {name: S}\n"),
-            "samplers[1].name: sampler name 'S' is used twice or reserved");
+            "samplers[1].name: sampler name 'S' is already used by another sampler");
   EXPECT_EQ(buildError("samplers:\n  - {name: root}\n"),
-            "samplers[0].name: sampler name 'root' is used twice or reserved");
+            "samplers[0].name: sampler name 'root' is reserved (root is the root, HideSampler places the "
+            "hidden objects)");
   EXPECT_EQ(buildError("samplers:\n  - {name: HideSampler}\n"),
-            "samplers[0].name: sampler name 'HideSampler' is used twice or reserved");
+            "samplers[0].name: sampler name 'HideSampler' is reserved (root is the root, HideSampler "
+            "places the hidden objects)");
   EXPECT_EQ(buildError("samplers:\n  - {name: S}\n  - {name: C, type: sequential, samplers: [{name: S}]}\n"),
-            "samplers[1].samplers[0].name: sampler name 'S' is used twice or reserved");
+            "samplers[1].samplers[0].name: sampler name 'S' is already used by another sampler");
 }
 
 TEST(ConfigBuilder, References) {
@@ -558,7 +560,7 @@ TEST(ConfigBuilder, RosparamStylePaths) {
   } catch (const ConfigError& e) {
     EXPECT_EQ(std::string(e.what()),
               "/placement_server/samplers[0]/x_range: expected [min, max] with min <= max, got "
-              "[1.000000, 0.000000]");
+              "[1, 0]");
   }
 }
 

@@ -153,13 +153,13 @@ TEST(SceneGenerator, FixtureErrors) {
 
   request.fixtures = {boxFixture("a", Eigen::Vector3d(0.1, -0.1, 0.1), Eigen::Vector3d::Zero())};
   EXPECT_EQ(requestError(generator, request),
-            "fixture 'a': box size y must be finite and positive, got -0.100000");
+            "fixture 'a': box size y must be finite and positive, got -0.1");
   RequestFixture ball;
   ball.name = "a";
   ball.shape = Shape::sphere(0.0);
   request.fixtures = {ball};
   EXPECT_EQ(requestError(generator, request),
-            "fixture 'a': radius must be finite and positive, got 0.000000");
+            "fixture 'a': radius must be finite and positive, got 0");
 
   RequestFixture bare;
   bare.name = "a";
