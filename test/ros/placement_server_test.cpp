@@ -1,0 +1,489 @@
+// The real node through its real interfaces: service calls, tf frames, markers, reload.
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <future>
+#include <limits>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "placement_samplers/SamplePlacements.h"
+#include "placement_samplers/sample_scenes_cli.hpp"
+
+namespace {
+
+using placement_samplers::SamplePlacements;
+
+const char* const kService = "/placement_server/sample_placements";
+const std::string kConfig = std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/test/data/server_test.yaml";
+
+SamplePlacements call(SamplePlacements::Request request) {
+  SamplePlacements srv;
+  srv.request = request;
+  EXPECT_TRUE(ros::service::call(kService, srv)) << "the service call itself failed";
+  return srv;
+}
+
+SamplePlacements::Request seeded(std::uint64_t seed, std::uint32_t scenes = 1) {
+  SamplePlacements::Request r;
+  r.seed = seed;
+  r.num_scenes = scenes;
+  return r;
+}
+
+std::map<std::string, placement_samplers::Placement> byName(const placement_samplers::Scene& scene) {
+  std::map<std::string, placement_samplers::Placement> out;
+  for (const auto& p : scene.placements) {
+    out[p.name] = p;
+  }
+  return out;
+}
+
+double horizontalDistance(const geometry_msgs::Pose& a, const geometry_msgs::Pose& b) {
+  return std::hypot(a.position.x - b.position.x, a.position.y - b.position.y);
+}
+
+class PlacementServerTest : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ASSERT_TRUE(ros::service::waitForService(kService, ros::Duration(30.0)));
+  }
+};
+
+TEST_F(PlacementServerTest, EmptyRequestSamplesOneScene) {
+  const SamplePlacements srv = call(SamplePlacements::Request());
+  EXPECT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_EQ(srv.response.message, "");
+  EXPECT_NE(srv.response.seed, 0u);
+  EXPECT_EQ(srv.response.frame_id, "world");
+  ASSERT_EQ(srv.response.scenes.size(), 1u);
+  const auto placed = byName(srv.response.scenes[0]);
+  for (const char* name : {"plate", "cup", "cube", "can", "ball", "pill"}) {
+    EXPECT_EQ(placed.count(name), 1u) << name;
+  }
+  EXPECT_EQ(placed.at("cube").sampler, "TableSampler");
+  EXPECT_GE(placed.at("cube").attempts, 1u);
+}
+
+// Positions lie in their shrunk regions around the table top, z follows on_top, the cup sits on
+// the plate, nothing overlaps under robosuite's test, the hidden object is far away.
+TEST_F(PlacementServerTest, PlacementsRespectRegionsStackingAndRadiusTest) {
+  const SamplePlacements srv = call(seeded(99, 100));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ASSERT_EQ(srv.response.scenes.size(), 100u);
+  const std::map<std::string, double> radius{{"plate", 0.09}, {"cube", std::sqrt(2.0) * 0.021},
+                                             {"can", 0.033}, {"ball", 0.03}};
+  const std::map<std::string, double> bottom{{"plate", -0.01}, {"cube", -0.021}, {"can", -0.06},
+                                             {"ball", -0.03}};
+  const std::map<std::string, double> top{{"plate", 0.01}, {"cube", 0.021}, {"can", 0.06},
+                                          {"ball", 0.03}};
+  const double tableTop = 0.775 + 0.025;
+  for (const auto& scene : srv.response.scenes) {
+    const auto placed = byName(scene);
+    for (const auto& entry : radius) {
+      const auto& pose = placed.at(entry.first).pose;
+      const double half = entry.first == "plate" ? 0.3 : 0.35;
+      EXPECT_LE(std::abs(pose.position.x), half - entry.second + 1e-12) << entry.first;
+      EXPECT_LE(std::abs(pose.position.y), half - entry.second + 1e-12) << entry.first;
+      EXPECT_NEAR(pose.position.z, tableTop + 0.01 - bottom.at(entry.first), 1e-12) << entry.first;
+    }
+    const auto& plate = placed.at("plate").pose;
+    const auto& cup = placed.at("cup").pose;
+    EXPECT_NEAR(cup.position.x, plate.position.x, 1e-12);
+    EXPECT_NEAR(cup.position.y, plate.position.y, 1e-12);
+    EXPECT_NEAR(cup.position.z, plate.position.z + 0.01 + 0.045, 1e-12);
+    for (const auto& a : radius) {
+      for (const auto& b : radius) {
+        if (a.first < b.first) {
+          const auto& pa = placed.at(a.first).pose;
+          const auto& pb = placed.at(b.first).pose;
+          // Same table height: robosuite's z condition holds, so circles must not touch.
+          const bool zClash = pb.position.z - pa.position.z <= top.at(a.first) - bottom.at(b.first);
+          if (zClash) {
+            EXPECT_GT(horizontalDistance(pa, pb), a.second + b.second) << a.first << " " << b.first;
+          }
+        }
+      }
+    }
+    const auto& pill = placed.at("pill").pose;
+    EXPECT_GE(pill.position.x, -20.0);
+    EXPECT_LE(pill.position.x, -10.0);
+    EXPECT_NEAR(pill.position.z, 10.0 + 0.06, 1e-12);
+  }
+}
+
+TEST_F(PlacementServerTest, SameSeedSameAnswerAndSceneIndependentOfCount) {
+  const SamplePlacements a = call(seeded(777, 5));
+  const SamplePlacements b = call(seeded(777, 5));
+  const SamplePlacements one = call(seeded(777, 1));
+  ASSERT_TRUE(a.response.success && b.response.success && one.response.success);
+  EXPECT_EQ(a.response.seed, 777u);
+  ASSERT_EQ(a.response.scenes.size(), 5u);
+  EXPECT_EQ(a.response.scenes, b.response.scenes);
+  EXPECT_EQ(a.response.scenes[0], one.response.scenes[0]);
+  EXPECT_NE(a.response.scenes[0], a.response.scenes[1]);
+}
+
+TEST_F(PlacementServerTest, ReturnedSeedReproducesTheScene) {
+  const SamplePlacements first = call(SamplePlacements::Request());
+  ASSERT_TRUE(first.response.success);
+  const SamplePlacements again = call(seeded(first.response.seed));
+  EXPECT_EQ(first.response.scenes, again.response.scenes);
+}
+
+// The node and the CLI give the same scenes for the same seed, to the last bit.
+TEST_F(PlacementServerTest, MatchesTheCommandLineTool) {
+  const SamplePlacements srv = call(seeded(4242, 3));
+  ASSERT_TRUE(srv.response.success);
+  std::ostringstream out, err;
+  ASSERT_EQ(placement_samplers::runSampleScenes(
+                {"--config", kConfig, "--seed", "4242", "--scenes", "3"}, out, err),
+            0)
+      << err.str();
+  std::istringstream lines(out.str());
+  std::string line;
+  std::size_t scene = 0;
+  const std::regex placementRe(
+      "\"name\": \"([^\"]+)\", \"sampler\": \"[^\"]+\", \"position\": \\[([^\\]]+)\\], "
+      "\"orientation\": \\[([^\\]]+)\\], \"attempts\": ([0-9]+)");
+  while (std::getline(lines, line)) {
+    ASSERT_LT(scene, srv.response.scenes.size());
+    const auto& placements = srv.response.scenes[scene].placements;
+    std::size_t i = 0;
+    for (auto it = std::sregex_iterator(line.begin(), line.end(), placementRe);
+         it != std::sregex_iterator(); ++it, ++i) {
+      ASSERT_LT(i, placements.size());
+      const auto& p = placements[i];
+      EXPECT_EQ((*it)[1].str(), p.name);
+      double x, y, z, qx, qy, qz, qw;
+      ASSERT_EQ(std::sscanf((*it)[2].str().c_str(), "%lf, %lf, %lf", &x, &y, &z), 3);
+      ASSERT_EQ(std::sscanf((*it)[3].str().c_str(), "%lf, %lf, %lf, %lf", &qx, &qy, &qz, &qw), 4);
+      EXPECT_EQ(x, p.pose.position.x);
+      EXPECT_EQ(y, p.pose.position.y);
+      EXPECT_EQ(z, p.pose.position.z);
+      EXPECT_EQ(qz, p.pose.orientation.z);
+      EXPECT_EQ(qw, p.pose.orientation.w);
+      EXPECT_EQ(std::stoul((*it)[4].str()), p.attempts);
+    }
+    EXPECT_EQ(i, placements.size());
+    ++scene;
+  }
+  EXPECT_EQ(scene, 3u);
+}
+
+TEST_F(PlacementServerTest, SubSamplerAndCallLevelReference) {
+  SamplePlacements::Request r = seeded(5);
+  r.sampler = "TableSampler";
+  const SamplePlacements table = call(r);
+  ASSERT_TRUE(table.response.success) << table.response.message;
+  ASSERT_EQ(table.response.scenes[0].placements.size(), 3u);
+  EXPECT_EQ(table.response.scenes[0].placements[0].name, "cube");
+
+  // A request fixture used as reference: the cube is placed around it, on top of it.
+  r = seeded(6);
+  r.sampler = "TableSampler";
+  placement_samplers::Fixture box;
+  box.name = "crate";
+  box.shape.type = shape_msgs::SolidPrimitive::BOX;
+  box.shape.dimensions = {0.5, 0.5, 0.2};
+  box.pose.position.x = 5.0;
+  box.pose.position.z = 0.1;
+  box.pose.orientation.w = 1.0;
+  r.fixtures.push_back(box);
+  // TableSampler names the table itself, so the call-level reference does not apply to it...
+  r.reference = "crate";
+  const SamplePlacements kept = call(r);
+  ASSERT_TRUE(kept.response.success) << kept.response.message;
+  EXPECT_LT(std::abs(kept.response.scenes[0].placements[0].pose.position.x), 1.0);
+  // ...but a point reference with a sampler that sets none is used, on_top false keeps z.
+  r = seeded(7);
+  r.sampler = "PlateSampler";
+  r.use_reference_point = true;
+  r.reference_point.x = 3.0;
+  r.reference_point.z = 1.0;
+  const SamplePlacements plate = call(r);
+  ASSERT_TRUE(plate.response.success);
+  // PlateSampler sets its own reference (table): the call's point does not override it.
+  EXPECT_LT(std::abs(plate.response.scenes[0].placements[0].pose.position.x), 1.0);
+}
+
+TEST_F(PlacementServerTest, FailureNamesObjectSamplerAndBlocker) {
+  SamplePlacements::Request r = seeded(11);
+  r.sampler = "TableSampler";
+  r.max_attempts = 3;
+  placement_samplers::Fixture wall;
+  wall.name = "wall";
+  wall.shape.type = shape_msgs::SolidPrimitive::BOX;
+  wall.shape.dimensions = {2.0, 2.0, 0.5};
+  wall.pose.position.z = 0.8;
+  wall.pose.orientation.w = 1.0;
+  r.fixtures.push_back(wall);
+  const SamplePlacements srv = call(r);
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_EQ(srv.response.message,
+            "could not place object 'cube' with sampler 'TableSampler' in 3 attempts: 3 of them "
+            "overlapped fixture 'wall'");
+}
+
+TEST_F(PlacementServerTest, BadRequestsAnswerWithTheReason) {
+  struct Case {
+    std::string what;
+    std::function<void(SamplePlacements::Request&)> edit;
+    std::string message;
+  };
+  placement_samplers::Fixture ok;
+  ok.name = "box1";
+  ok.shape.type = shape_msgs::SolidPrimitive::BOX;
+  ok.shape.dimensions = {0.1, 0.1, 0.1};
+  ok.pose.orientation.w = 1.0;
+  const std::vector<Case> cases{
+      {"unknown sampler", [](auto& r) { r.sampler = "Nope"; },
+       "unknown sampler 'Nope' (configured: root, PlateSampler, CupSampler, TableSampler, "
+       "HideSampler)"},
+      {"unknown reference", [](auto& r) { r.reference = "ghost"; },
+       "unknown reference 'ghost' (not a configured object or a fixture)"},
+      {"unknown fixture object",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].object = "anvil";
+       },
+       "fixture 'box1': unknown object 'anvil'"},
+      {"duplicate fixtures", [&](auto& r) { r.fixtures = {ok, ok}; },
+       "fixture 'box1': the name is used twice"},
+      {"fixture named like the configured one",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].name = "table";
+       },
+       "fixture 'table': the name is used twice"},
+      {"fixture named like an object",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].name = "cube";
+       },
+       "fixture 'cube': the name is already a configured object"},
+      {"NaN position",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].pose.position.y = std::numeric_limits<double>::quiet_NaN();
+       },
+       "fixtures[0].pose.position must be finite"},
+      {"non-unit quaternion",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].pose.orientation.w = 2.0;
+       },
+       "fixtures[0].pose.orientation must be a unit quaternion, got (x 0, y 0, z 0, w 2)"},
+      {"zero quaternion",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].pose.orientation.w = 0.0;
+       },
+       "fixtures[0].pose.orientation must be a unit quaternion, got (x 0, y 0, z 0, w 0); use "
+       "w: 1 for no rotation"},
+      {"cone",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].shape.type = shape_msgs::SolidPrimitive::CONE;
+       },
+       "fixtures[0].shape: type must be BOX (1), SPHERE (2) or CYLINDER (3), got 4"},
+      {"negative size",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].shape.dimensions[1] = -1.0;
+       },
+       "fixture 'box1': box size y must be finite and positive, got -1"},
+      {"wrong dimension count",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].shape.dimensions = {0.1};
+       },
+       "fixtures[0].shape: a box needs 3 dimensions, got 1"},
+      {"bad on_top", [](auto& r) { r.on_top = 7; },
+       "on_top must be ON_TOP_DEFAULT (0), ON_TOP_TRUE (1) or ON_TOP_FALSE (2), got 7"},
+      {"bad collision_check", [](auto& r) { r.collision_check = 9; },
+       "collision_check must be CHECK_DEFAULT (0), CHECK_RADIUS (1), CHECK_FCL (2) or "
+       "CHECK_RADIUS_AND_FCL (3), got 9"},
+      {"too many scenes", [](auto& r) { r.num_scenes = 501; },
+       "num_scenes 501 exceeds max_scenes_per_request (500)"},
+      {"reference and point", [](auto& r) {
+         r.reference = "table";
+         r.use_reference_point = true;
+       },
+       "give either reference or use_reference_point, not both"},
+      {"NaN reference point", [](auto& r) {
+         r.use_reference_point = true;
+         r.reference_point.x = std::numeric_limits<double>::infinity();
+       },
+       "reference_point must be finite"},
+  };
+  for (const Case& c : cases) {
+    SamplePlacements::Request r = seeded(3);
+    c.edit(r);
+    const SamplePlacements srv = call(r);
+    EXPECT_FALSE(srv.response.success) << c.what;
+    EXPECT_EQ(srv.response.message, c.message) << c.what;
+    EXPECT_TRUE(srv.response.scenes.empty()) << c.what;
+  }
+  // Still serving.
+  EXPECT_TRUE(call(seeded(3)).response.success);
+}
+
+TEST_F(PlacementServerTest, FramesReachATfListener) {
+  ros::NodeHandle nh;
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  const SamplePlacements srv = call(seeded(31));
+  ASSERT_TRUE(srv.response.success);
+  for (const auto& p : srv.response.scenes[0].placements) {
+    geometry_msgs::TransformStamped t;
+    // Static frames of an earlier call may arrive first: wait for this scene's values.
+    const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(10.0);
+    bool same = false;
+    while (!same && ros::WallTime::now() < until) {
+      try {
+        t = buffer.lookupTransform("world", "test/" + p.name, ros::Time(0), ros::Duration(1.0));
+        same = t.transform.translation.x == p.pose.position.x &&
+               t.transform.translation.y == p.pose.position.y &&
+               t.transform.translation.z == p.pose.position.z &&
+               t.transform.rotation.w == p.pose.orientation.w;
+      } catch (const tf2::TransformException&) {
+      }
+      ros::WallDuration(0.05).sleep();
+    }
+    EXPECT_TRUE(same) << p.name;
+  }
+  const auto table = buffer.lookupTransform("world", "test/table", ros::Time(0), ros::Duration(5.0));
+  EXPECT_DOUBLE_EQ(table.transform.translation.z, 0.775);
+
+  // A dry run broadcasts nothing: the frames keep the last scene.
+  SamplePlacements::Request dry = seeded(32);
+  dry.dry_run = true;
+  ASSERT_TRUE(call(dry).response.success);
+  ros::WallDuration(1.0).sleep();
+  const auto& cube = byName(srv.response.scenes[0]).at("cube");
+  const auto t = buffer.lookupTransform("world", "test/cube", ros::Time(0), ros::Duration(1.0));
+  EXPECT_EQ(t.transform.translation.x, cube.pose.position.x);
+}
+
+TEST_F(PlacementServerTest, MarkersShowObjectsFixturesAndRegions) {
+  ros::NodeHandle nh;
+  std::promise<visualization_msgs::MarkerArray> received;
+  bool done = false;
+  std::mutex mutex;
+  ros::Subscriber sub = nh.subscribe<visualization_msgs::MarkerArray>(
+      "/placement_server/markers", 5, [&](const visualization_msgs::MarkerArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!done && m->markers.size() > 1 && m->markers[1].header.stamp.toSec() > 0) {
+          // Wait for the markers of the call below (it is the one with seed 41's cube pose).
+          for (const auto& marker : m->markers) {
+            if (marker.ns == "objects" && marker.id > 0 && marker.pose.position.z > 0.0) {
+              done = true;
+              received.set_value(*m);
+              return;
+            }
+          }
+        }
+      });
+  const SamplePlacements srv = call(seeded(41));
+  ASSERT_TRUE(srv.response.success);
+  auto future = received.get_future();
+  ASSERT_EQ(future.wait_for(std::chrono::seconds(10)), std::future_status::ready);
+  const visualization_msgs::MarkerArray markers = future.get();
+  ASSERT_FALSE(markers.markers.empty());
+  EXPECT_EQ(markers.markers[0].action, visualization_msgs::Marker::DELETEALL);
+  std::map<std::string, int> count;
+  for (const auto& m : markers.markers) {
+    count[m.ns]++;
+    EXPECT_EQ(m.header.frame_id, m.action == visualization_msgs::Marker::DELETEALL ? m.header.frame_id : "world");
+  }
+  // plate, cup, cube, can, ball (the hidden pill is not drawn).
+  EXPECT_EQ(count["objects"], 5);
+  EXPECT_EQ(count["fixtures"], 1);
+  EXPECT_EQ(count["regions"], 3);
+}
+
+TEST_F(PlacementServerTest, ReloadAcceptsGoodAndRefusesBadConfiguration) {
+  ros::NodeHandle nh;
+  std_srvs::Trigger trigger;
+  // A good change: a narrower table region.
+  XmlRpc::XmlRpcValue samplers;
+  ASSERT_TRUE(nh.getParam("/placement_server/samplers", samplers));
+  XmlRpc::XmlRpcValue original = samplers;
+  samplers[2]["x_range"][0] = 0.1;
+  samplers[2]["x_range"][1] = 0.2;
+  samplers[2]["ensure_object_boundary_in_range"] = false;
+  nh.setParam("/placement_server/samplers", samplers);
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+  SamplePlacements::Request r = seeded(8, 20);
+  r.sampler = "TableSampler";
+  const SamplePlacements narrow = call(r);
+  ASSERT_TRUE(narrow.response.success) << narrow.response.message;
+  for (const auto& scene : narrow.response.scenes) {
+    for (const auto& p : scene.placements) {
+      EXPECT_GE(p.pose.position.x, 0.1);
+      EXPECT_LT(p.pose.position.x, 0.2);
+    }
+  }
+
+  // A bad change is refused with its parameter path, and the previous configuration serves on.
+  samplers[2]["x_range"][0] = 0.3;
+  samplers[2]["x_range"][1] = -0.3;
+  nh.setParam("/placement_server/samplers", samplers);
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_FALSE(trigger.response.success);
+  EXPECT_EQ(trigger.response.message,
+            "configuration refused, the previous one stays: /placement_server/samplers[2]/x_range: "
+            "expected [min, max] with min <= max, got [0.3, -0.3]");
+  const SamplePlacements still = call(r);
+  ASSERT_TRUE(still.response.success);
+  EXPECT_EQ(still.response.scenes, narrow.response.scenes);
+
+  nh.setParam("/placement_server/samplers", original);
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+}
+
+// Concurrent clients get, for each seed, the answer a lone client gets.
+TEST_F(PlacementServerTest, ConcurrentCallsAreIndependent) {
+  std::vector<SamplePlacements> alone;
+  for (std::uint64_t seed = 100; seed < 108; ++seed) {
+    alone.push_back(call(seeded(seed, 3)));
+  }
+  std::vector<std::future<SamplePlacements>> futures;
+  for (int round = 0; round < 3; ++round) {
+    for (std::uint64_t seed = 100; seed < 108; ++seed) {
+      futures.push_back(std::async(std::launch::async, [seed] {
+        SamplePlacements srv;
+        srv.request = seeded(seed, 3);
+        srv.request.dry_run = true;
+        ros::service::call(kService, srv);
+        return srv;
+      }));
+    }
+  }
+  for (std::size_t i = 0; i < futures.size(); ++i) {
+    const SamplePlacements srv = futures[i].get();
+    EXPECT_TRUE(srv.response.success) << srv.response.message;
+    EXPECT_EQ(srv.response.scenes, alone[i % 8].response.scenes);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "placement_server_test");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
+}

@@ -1,0 +1,46 @@
+#!/usr/bin/python3
+"""The rospy side: the example client script and the generated Python messages."""
+import os
+import subprocess
+import sys
+import unittest
+
+import rospy
+import rostest
+from placement_samplers.srv import SamplePlacements, SamplePlacementsRequest
+
+SERVICE = "/placement_server/sample_placements"
+CLIENT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts",
+                      "sample_client.py")
+
+
+class SampleClientTest(unittest.TestCase):
+    def setUp(self):
+        rospy.wait_for_service(SERVICE, timeout=30.0)
+
+    def test_rospy_call_round_trips_the_seed(self):
+        call = rospy.ServiceProxy(SERVICE, SamplePlacements)
+        first = call(SamplePlacementsRequest())
+        self.assertTrue(first.success, first.message)
+        again = call(SamplePlacementsRequest(seed=first.seed, dry_run=True))
+        self.assertEqual(first.scenes, again.scenes)
+        names = [p.name for p in first.scenes[0].placements]
+        self.assertEqual(names, ["plate", "cup", "cube", "can", "ball", "pill"])
+
+    def test_example_client_prints_the_scene(self):
+        out = subprocess.run([sys.executable, CLIENT, "--seed", "5", "--dry-run"],
+                             capture_output=True, text=True, timeout=60)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        self.assertIn("success: True  seed: 5  frame: world", out.stdout)
+        self.assertIn("TableSampler", out.stdout)
+
+    def test_example_client_reports_a_bad_sampler(self):
+        out = subprocess.run([sys.executable, CLIENT, "--sampler", "Nope", "--dry-run"],
+                             capture_output=True, text=True, timeout=60)
+        self.assertEqual(out.returncode, 1)
+        self.assertIn("message: unknown sampler 'Nope'", out.stdout)
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_sample_client", anonymous=True)
+    rostest.rosrun("placement_samplers", "test_sample_client", SampleClientTest)
