@@ -1,0 +1,483 @@
+// placement_benchmark: fixed configurations and seeds, timed on one core (and on two for the
+// batch), printed as plain tables. Not a test: it asserts nothing about time. See
+// docs/benchmarks.md for the figures and how to read them.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/config_builder.hpp"
+#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/random.hpp"
+#include "placement_samplers/sample_context.hpp"
+#include "placement_samplers/scene_generator.hpp"
+
+#ifndef PLACEMENT_SAMPLERS_CONFIG_DIR
+#define PLACEMENT_SAMPLERS_CONFIG_DIR "config"
+#endif
+
+namespace ps = placement_samplers;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr std::uint64_t kSeed = 20240605;  // every figure uses this request seed
+
+/// Options of one run.
+struct Options {
+  std::string configDir = PLACEMENT_SAMPLERS_CONFIG_DIR;
+  int repetitions = 5;          ///< timed repetitions per figure; the median is printed
+  double secondsPerRep = 0.1;   ///< [s] target length of one repetition
+  std::uint64_t batchScenes = 10000;
+  std::uint64_t statScenes = 2000;  ///< scenes behind attempts per object and failure rate
+};
+
+/// Keeps results observable so the optimiser cannot drop the work.
+volatile double gSink = 0.0;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// Median over repetitions of the time per operation [ns]. @p body(n) performs n operations.
+/// The operation count is calibrated so that one repetition lasts about secondsPerRep.
+template <class Body>
+double nsPerOp(const Options& options, Body&& body) {
+  std::uint64_t n = 1;
+  double elapsed = 0.0;
+  for (;;) {
+    const Clock::time_point start = Clock::now();
+    body(n);
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    if (elapsed >= 0.02 || n >= (1ull << 32)) {
+      break;
+    }
+    n *= 4;
+  }
+  n = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(n * options.secondsPerRep / elapsed));
+  std::vector<double> samples;
+  for (int r = 0; r < options.repetitions; ++r) {
+    const Clock::time_point start = Clock::now();
+    body(n);
+    samples.push_back(std::chrono::duration<double, std::nano>(Clock::now() - start).count() /
+                      static_cast<double>(n));
+  }
+  return median(samples);
+}
+
+/// robosuite's brute-force radius test: every entry, in order. The reference the grid of
+/// RadiusChecker is compared against, in time and in results.
+class ScanChecker : public ps::CollisionChecker {
+ public:
+  void clear() override {}
+  void added(const std::vector<ps::PlacedEntry>&, std::size_t) override {}
+  std::ptrdiff_t firstCollision(const std::vector<ps::PlacedEntry>& entries,
+                                const ps::Candidate& candidate) const override {
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (ps::radiusOverlap(entries[i], candidate)) {
+        return static_cast<std::ptrdiff_t>(i);
+      }
+    }
+    return kNone;
+  }
+  bool needsOrientation() const override { return false; }
+};
+
+/// The scene loop of SceneGenerator's worker without building results: an engine, a checker
+/// and a context kept from scene to scene.
+class SceneLoop {
+ public:
+  SceneLoop(const ps::PreparedRequest& request, std::unique_ptr<ps::CollisionChecker> checker)
+      : request_(request), checker_(std::move(checker)), context_(engine_, *checker_, 0) {}
+
+  /// Samples one scene with the engine as it is; false when the scene failed.
+  bool scene() {
+    context_.clear();
+    for (const ps::FixtureSpec& f : request_.fixtures) {
+      context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
+    }
+    return request_.sampler->sample(context_, request_.reference, request_.onTop);
+  }
+
+  /// Scenes with one engine seeded once: the cost of sampling alone [ns/scene].
+  void runReused(std::uint64_t n) {
+    engine_.seed(kSeed);
+    double sum = 0.0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      scene();
+      sum += lastX();
+    }
+    gSink = gSink + sum;
+  }
+
+  /// Scenes seeded from (seed, i) as the service and the CLI do.
+  void runSeeded(std::uint64_t n) {
+    double sum = 0.0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      engine_.seed(ps::sceneSeed(kSeed, i));
+      scene();
+      sum += lastX();
+    }
+    gSink = gSink + sum;
+  }
+
+  const ps::SampleContext& context() const { return context_; }
+  ps::Engine& engine() { return engine_; }
+
+ private:
+  double lastX() const {
+    const auto& p = context_.placements();
+    return p.empty() ? 0.0 : p.back().position.x();
+  }
+
+  const ps::PreparedRequest& request_;
+  ps::Engine engine_;
+  std::unique_ptr<ps::CollisionChecker> checker_;
+  ps::SampleContext context_;
+};
+
+/// Attempts and failures over a fixed set of seeded scenes.
+struct SceneStats {
+  std::uint64_t scenes = 0;
+  std::uint64_t failed = 0;
+  std::uint64_t objects = 0;   ///< objects tried (placed, or the one that failed)
+  std::uint64_t attempts = 0;  ///< samples drawn for them
+  double checksum = 0.0;       ///< sum of every placed coordinate: equal runs, equal sums
+
+  double attemptsPerObject() const { return objects ? double(attempts) / double(objects) : 0.0; }
+  double failureRate() const { return scenes ? double(failed) / double(scenes) : 0.0; }
+};
+
+SceneStats collectStats(SceneLoop& loop, std::uint64_t scenes) {
+  SceneStats stats;
+  for (std::uint64_t i = 0; i < scenes; ++i) {
+    loop.engine().seed(ps::sceneSeed(kSeed, i));
+    const bool ok = loop.scene();
+    ++stats.scenes;
+    for (const ps::ObjectPlacement& p : loop.context().placements()) {
+      ++stats.objects;
+      stats.attempts += p.attempts;
+      stats.checksum += p.position.x() + p.position.y() + p.position.z();
+    }
+    if (!ok) {
+      ++stats.failed;
+      if (loop.context().failure()) {
+        ++stats.objects;
+        stats.attempts += loop.context().failure()->attempts;
+      }
+    }
+  }
+  return stats;
+}
+
+/// A loaded configuration with the default request prepared.
+struct Setup {
+  std::unique_ptr<ps::SceneGenerator> generator;
+  ps::PreparedRequest request;
+};
+
+Setup makeSetup(const ps::ConfigNode& tree, std::optional<ps::CollisionMode> mode = std::nullopt) {
+  Setup setup;
+  setup.generator = std::make_unique<ps::SceneGenerator>(ps::buildSceneConfig(tree));
+  ps::SampleRequest request;
+  request.collisionCheck = mode;
+  setup.request = setup.generator->prepare(request);
+  return setup;
+}
+
+/// The clutter scene: @p n cylinders (radius 0.03 m, height 0.1 m) in one sampler over a
+/// 0.6 m x 0.6 m region, ensure_object_boundary_in_range and ensure_valid_placement on. Built
+/// from YAML text through the same builder as the files in config/.
+std::string clutterYaml(int n) {
+  std::ostringstream y;
+  y << "collision_check: radius\nmax_attempts: 5000\nobjects:\n";
+  for (int i = 0; i < n; ++i) {
+    y << "  cyl" << i << ": {shape: cylinder, radius: 0.03, length: 0.1}\n";
+  }
+  y << "samplers:\n  - name: ClutterSampler\n    objects: [";
+  for (int i = 0; i < n; ++i) {
+    y << (i ? ", " : "") << "cyl" << i;
+  }
+  y << "]\n    x_range: [-0.3, 0.3]\n    y_range: [-0.3, 0.3]\n    rotation:\n"
+       "    rotation_axis: z\n    ensure_object_boundary_in_range: true\n"
+       "    ensure_valid_placement: true\n    reference_pos: [0.0, 0.0, 0.8]\n    z_offset: 0.0\n";
+  return y.str();
+}
+
+bool fclAvailable() {
+  try {
+    ps::makeCollisionChecker(ps::CollisionMode::Fcl, 0.0);
+    return true;
+  } catch (const ps::ConfigError&) {
+    return false;
+  }
+}
+
+/// Least-squares slope of log(y) against log(x).
+double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double lx = std::log(x[i]);
+    const double ly = std::log(y[i]);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+std::string fmt(const char* format, double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, v);
+  return buffer;
+}
+
+void rule() { std::printf("%s\n", std::string(100, '-').c_str()); }
+
+/// Cost of seeding the engine per scene: seed() plus the first draw (which regenerates all
+/// 312 words of state), against a draw from a running engine.
+void benchSeeding(const Options& options) {
+  ps::Engine engine(kSeed);
+  const double seedAndDraw = nsPerOp(options, [&](std::uint64_t n) {
+    std::uint64_t sum = 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      engine.seed(ps::sceneSeed(kSeed, i));
+      sum += engine();
+    }
+    gSink = gSink + static_cast<double>(sum);
+  });
+  const double seedOnly = nsPerOp(options, [&](std::uint64_t n) {
+    for (std::uint64_t i = 0; i < n; ++i) {
+      engine.seed(ps::sceneSeed(kSeed, i));
+    }
+    gSink = gSink + static_cast<double>(engine());
+  });
+  const double draw = nsPerOp(options, [&](std::uint64_t n) {
+    double sum = 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      sum += ps::uniform01(engine);
+    }
+    gSink = gSink + sum;
+  });
+  std::printf("\nPer-scene seeding of std::mt19937_64 (one core)\n");
+  rule();
+  std::printf("%-52s %12s\n", "operation", "ns");
+  rule();
+  std::printf("%-52s %12.1f\n", "engine.seed(sceneSeed(seed, i)) alone", seedOnly);
+  std::printf("%-52s %12.1f\n", "engine.seed(...) + first draw (full state twist)", seedAndDraw);
+  std::printf("%-52s %12.2f\n", "one uniform01 draw from a running engine", draw);
+}
+
+void benchEnvironments(const Options& options) {
+  struct Env {
+    const char* name;
+    const char* file;
+    double robosuiteUs;  ///< [us/scene], from issue 5
+  };
+  const Env envs[] = {{"Lift", "lift.yaml", 8.8},
+                      {"Stack", "stack.yaml", 26.0},
+                      {"NutAssembly", "nut_assembly.yaml", 28.0},
+                      {"PickPlace", "pick_place.yaml", 105.0}};
+  std::printf("\nrobosuite environments, time per scene, one thread (median of %d)\n",
+              options.repetitions);
+  rule();
+  std::printf("%-12s %12s %12s %12s %12s %11s %11s\n", "config", "sample[ns]", "+seed[ns]",
+              "batch1t[ns]", "scan+seed", "robosuite", "x faster");
+  std::printf("%-12s %12s %12s %12s %12s %11s %11s\n", "", "(reused)", "(per scene)",
+              "sampleScenes", "[ns]", "[us]", "(+seed)");
+  rule();
+  for (const Env& env : envs) {
+    const Setup setup = makeSetup(ps::loadYamlFile(options.configDir + "/" + env.file));
+    SceneLoop loop(setup.request, ps::makeCollisionChecker(setup.request.collisionCheck, 0.0));
+    SceneLoop scan(setup.request, std::make_unique<ScanChecker>());
+    const double reused = nsPerOp(options, [&](std::uint64_t n) { loop.runReused(n); });
+    const double seeded = nsPerOp(options, [&](std::uint64_t n) { loop.runSeeded(n); });
+    const double scanSeeded = nsPerOp(options, [&](std::uint64_t n) { scan.runSeeded(n); });
+    const double batch = nsPerOp(options, [&](std::uint64_t n) {
+      const auto results = setup.generator->sampleScenes(setup.request, kSeed, n, 1);
+      gSink = gSink + static_cast<double>(results.back().placements.size());
+    });
+    std::printf("%-12s %12.1f %12.1f %12.1f %12.1f %11.1f %11.0f\n", env.name, reused, seeded,
+                batch, scanSeeded, env.robosuiteUs, env.robosuiteUs * 1000.0 / seeded);
+  }
+  std::printf("sample: engine seeded once and reused; +seed: engine.seed(sceneSeed(seed, i)) per "
+              "scene, as the service and CLI;\nbatch1t: SceneGenerator::sampleScenes with 1 "
+              "thread (results built); scan: the brute-force radius test instead of the grid.\n");
+}
+
+void benchClutter(const Options& options) {
+  struct Point {
+    int n;
+    double robosuiteMs;  ///< [ms/scene] from issue 5, 0 = not given
+  };
+  const Point points[] = {{5, 0.06}, {10, 0.19}, {20, 0.76}, {40, 5.0}, {50, 0.0}};
+  std::printf("\nClutter: N cylinders r=0.03 h=0.1 in 0.6 x 0.6 m, both flags on, one thread "
+              "(median of %d; stats over %llu seeded scenes)\n",
+              options.repetitions, static_cast<unsigned long long>(options.statScenes));
+  rule();
+  std::printf("%4s %11s %11s %11s %11s %9s %9s %9s %10s %8s\n", "N", "grid+seed", "grid", "scan+seed",
+              "scan", "att/obj", "fail", "same", "robosuite", "x faster");
+  std::printf("%4s %11s %11s %11s %11s %9s %9s %9s %10s %8s\n", "", "[ns/scene]", "[ns/scene]",
+              "[ns/scene]", "[ns/scene]", "", "rate", "result", "[ms]", "(+seed)");
+  rule();
+  std::vector<double> ns, gridSeeded, gridReused, scanSeeded;
+  for (const Point& point : points) {
+    const Setup setup = makeSetup(ps::parseYaml(clutterYaml(point.n), "clutter"));
+    SceneLoop grid(setup.request, ps::makeCollisionChecker(ps::CollisionMode::Radius, 0.0));
+    SceneLoop scan(setup.request, std::make_unique<ScanChecker>());
+    const double gs = nsPerOp(options, [&](std::uint64_t n) { grid.runSeeded(n); });
+    const double gr = nsPerOp(options, [&](std::uint64_t n) { grid.runReused(n); });
+    const double ss = nsPerOp(options, [&](std::uint64_t n) { scan.runSeeded(n); });
+    const double sr = nsPerOp(options, [&](std::uint64_t n) { scan.runReused(n); });
+    const SceneStats a = collectStats(grid, options.statScenes);
+    const SceneStats b = collectStats(scan, options.statScenes);
+    const bool same = a.attempts == b.attempts && a.failed == b.failed && a.checksum == b.checksum;
+    std::printf("%4d %11.0f %11.0f %11.0f %11.0f %9.2f %9.4f %9s %10s %8s\n", point.n, gs, gr, ss, sr,
+                a.attemptsPerObject(), a.failureRate(), same ? "yes" : "NO",
+                point.robosuiteMs > 0 ? fmt("%.2f", point.robosuiteMs).c_str() : "-",
+                point.robosuiteMs > 0 ? fmt("%.0f", point.robosuiteMs * 1e6 / gs).c_str() : "-");
+    ns.push_back(point.n);
+    gridSeeded.push_back(gs);
+    gridReused.push_back(gr);
+    scanSeeded.push_back(ss);
+  }
+  std::printf("same result: grid and scan give the same attempts, failures and placements.\n");
+  std::printf("scaling exponent (log-log least squares, N = 5..50): grid+seed %.2f, grid %.2f, "
+              "scan+seed %.2f (robosuite ~2.1)\n",
+              logLogSlope(ns, gridSeeded), logLogSlope(ns, gridReused), logLogSlope(ns, scanSeeded));
+}
+
+void benchFcl(const Options& options) {
+  std::printf("\nfcl against radius, time per scene, one thread, per-scene seeding (median of %d)\n",
+              options.repetitions);
+  rule();
+  std::printf("%-14s %14s %14s %10s\n", "config", "radius[ns]", "fcl[ns]", "fcl/radius");
+  rule();
+  const bool available = fclAvailable();
+  struct Case {
+    const char* name;
+    ps::ConfigNode tree;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"PickPlace", ps::loadYamlFile(options.configDir + "/pick_place.yaml")});
+  cases.push_back({"Clutter N=20", ps::parseYaml(clutterYaml(20), "clutter")});
+  cases.push_back({"Clutter N=40", ps::parseYaml(clutterYaml(40), "clutter")});
+  for (const Case& c : cases) {
+    const Setup radius = makeSetup(c.tree, ps::CollisionMode::Radius);
+    SceneLoop radiusLoop(radius.request, ps::makeCollisionChecker(ps::CollisionMode::Radius, 0.0));
+    const double r = nsPerOp(options, [&](std::uint64_t n) { radiusLoop.runSeeded(n); });
+    if (!available) {
+      std::printf("%-14s %14.0f %14s %10s\n", c.name, r, "n/a", "n/a");
+      continue;
+    }
+    const Setup fcl = makeSetup(c.tree, ps::CollisionMode::Fcl);
+    SceneLoop fclLoop(fcl.request, ps::makeCollisionChecker(
+                                       ps::CollisionMode::Fcl, fcl.generator->config().collisionMargin));
+    const double f = nsPerOp(options, [&](std::uint64_t n) { fclLoop.runSeeded(n); });
+    std::printf("%-14s %14.0f %14.0f %10.2f\n", c.name, r, f, f / r);
+  }
+  if (!available) {
+    std::printf("n/a: makeCollisionChecker does not offer 'fcl' in this build.\n");
+  }
+}
+
+void benchBatch(const Options& options) {
+  const Setup setup = makeSetup(ps::loadYamlFile(options.configDir + "/pick_place.yaml"));
+  const std::uint64_t k = options.batchScenes;
+  std::printf("\nBatch: K = %llu PickPlace scenes through SceneGenerator::sampleScenes (median of "
+              "%d; hardware_concurrency %u)\n",
+              static_cast<unsigned long long>(k), options.repetitions,
+              std::thread::hardware_concurrency());
+  rule();
+  std::printf("%8s %14s %14s %10s\n", "threads", "batch[ms]", "ns/scene", "speed-up");
+  rule();
+  double one = 0.0;
+  for (unsigned threads : {1u, 2u}) {
+    std::vector<double> samples;
+    for (int r = 0; r < options.repetitions + 2; ++r) {  // the first two warm up
+      const Clock::time_point start = Clock::now();
+      const auto results = setup.generator->sampleScenes(setup.request, kSeed, k, threads);
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      gSink = gSink + results.back().placements.front().position.x();
+      if (r >= 2) {
+        samples.push_back(ms);
+      }
+    }
+    const double ms = median(samples);
+    if (threads == 1) {
+      one = ms;
+    }
+    std::printf("%8u %14.2f %14.1f %10.2f\n", threads, ms, ms * 1e6 / static_cast<double>(k),
+                one / ms);
+  }
+}
+
+int usage(const char* self) {
+  std::fprintf(stderr,
+               "usage: %s [--config-dir DIR] [--quick] [--only envs|seed|clutter|fcl|batch]\n"
+               "Times the samplers on fixed configurations and seeds and prints tables.\n"
+               "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
+               "(default: %s). --quick: fewer, shorter repetitions.\n",
+               self, PLACEMENT_SAMPLERS_CONFIG_DIR);
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  std::string only;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--config-dir" && i + 1 < argc) {
+      options.configDir = argv[++i];
+    } else if (arg == "--quick") {
+      options.repetitions = 3;
+      options.secondsPerRep = 0.03;
+      options.statScenes = 500;
+    } else if (arg == "--only" && i + 1 < argc) {
+      only = argv[++i];
+    } else {
+      return usage(argv[0]);
+    }
+  }
+  try {
+    std::printf("placement_benchmark: request seed %llu, configurations from %s\n",
+                static_cast<unsigned long long>(kSeed), options.configDir.c_str());
+    if (only.empty() || only == "envs") {
+      benchEnvironments(options);
+    }
+    if (only.empty() || only == "seed") {
+      benchSeeding(options);
+    }
+    if (only.empty() || only == "clutter") {
+      benchClutter(options);
+    }
+    if (only.empty() || only == "fcl") {
+      benchFcl(options);
+    }
+    if (only.empty() || only == "batch") {
+      benchBatch(options);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "placement_benchmark: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
