@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
     ROS_FATAL_STREAM("placement_server: invalid configuration: " << e.what());
     return 1;
   }
+  server.watchMaster(ros::WallDuration(1.0));
   ros::AsyncSpinner spinner(server.threads());
   spinner.start();
   ros::waitForShutdown();

@@ -23,15 +23,49 @@ void PlacementServer::start() {
     std::lock_guard<std::mutex> lock(generatorMutex_);
     generator_ = generator;
   }
+  advertise();
+  ROS_INFO_STREAM("placement_server: " << generator->config().objects.size() << " objects, "
+                                       << generator->config().fixtures.size()
+                                       << " fixtures; serving "
+                                       << sampleService_.getService());
+}
+
+void PlacementServer::advertise() {
+  std::lock_guard<std::mutex> lock(publishMutex_);
+  // Dropping the old handles first unregisters them, so the new ones register afresh.
+  sampleService_.shutdown();
+  reloadService_.shutdown();
+  pingService_.shutdown();
+  markerPublisher_.shutdown();
+  broadcaster_.reset();
   broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
   markerPublisher_ = privateHandle_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   sampleService_ = privateHandle_.advertiseService("sample_placements", &PlacementServer::sample, this);
   reloadService_ = privateHandle_.advertiseService("reload", &PlacementServer::reload, this);
   pingService_ = privateHandle_.advertiseService("ping", &PlacementServer::ping, this);
-  ROS_INFO_STREAM("placement_server: " << generator->config().objects.size() << " objects, "
-                                       << generator->config().fixtures.size()
-                                       << " fixtures; serving "
-                                       << sampleService_.getService());
+  if (!frames_.empty()) {
+    std::vector<geometry_msgs::TransformStamped> frames;
+    for (const auto& entry : frames_) {
+      frames.push_back(entry.second);
+    }
+    broadcaster_->sendTransform(frames);
+    markerPublisher_.publish(lastMarkers_);
+  }
+}
+
+void PlacementServer::watchMaster(const ros::WallDuration& period) {
+  masterTimer_ = privateHandle_.createWallTimer(period, &PlacementServer::checkMaster, this);
+}
+
+void PlacementServer::checkMaster(const ros::WallTimerEvent&) {
+  const bool up = ros::master::check();
+  if (up && !masterUp_) {
+    ROS_WARN("placement_server: the master is back; registering services and topics again");
+    advertise();
+  } else if (!up && masterUp_) {
+    ROS_WARN("placement_server: lost the master; waiting for it to come back");
+  }
+  masterUp_ = up;
 }
 
 unsigned PlacementServer::threads() const { return generator()->config().threads; }
@@ -105,9 +139,16 @@ void PlacementServer::publish(const SceneGenerator& generator, const PreparedReq
                               const SceneResult& scene) {
   const SceneConfig& config = generator.config();
   const ros::Time now = ros::Time::now();
+  std::vector<geometry_msgs::TransformStamped> frames =
+      toTransforms(scene, request.fixtures, config.frameId, config.tfPrefix, now);
+  visualization_msgs::MarkerArray markers = makeSceneMarkers(request, scene, config.frameId, now);
   std::lock_guard<std::mutex> lock(publishMutex_);
-  broadcaster_->sendTransform(toTransforms(scene, request.fixtures, config.frameId, config.tfPrefix, now));
-  markerPublisher_.publish(makeSceneMarkers(request, scene, config.frameId, now));
+  broadcaster_->sendTransform(frames);
+  markerPublisher_.publish(markers);
+  for (const auto& frame : frames) {
+    frames_[frame.child_frame_id] = frame;
+  }
+  lastMarkers_ = std::move(markers);
 }
 
 bool PlacementServer::reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {

@@ -5,9 +5,14 @@
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include <map>
 #include <memory>
 #include <mutex>
 #include <random>
+#include <vector>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include "placement_samplers/SamplePlacements.h"
 #include "placement_samplers/scene_generator.hpp"
@@ -30,6 +35,10 @@ class PlacementServer {
   /// Service calls served at once (the configuration's `threads`).
   unsigned threads() const;
 
+  /// Checks the master every @p period: when it comes back after a restart, registers the
+  /// services and topics again and re-broadcasts the last scene.
+  void watchMaster(const ros::WallDuration& period);
+
   bool sample(SamplePlacements::Request& request, SamplePlacements::Response& response);
   bool reload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   /// Does nothing: a baseline for measuring the cost of a service call.
@@ -40,6 +49,8 @@ class PlacementServer {
   std::uint64_t nextSeed();
   void publish(const SceneGenerator& generator, const PreparedRequest& request,
                const SceneResult& scene);
+  void advertise();
+  void checkMaster(const ros::WallTimerEvent&);
 
   ros::NodeHandle privateHandle_;
   ros::ServiceServer sampleService_;
@@ -52,7 +63,11 @@ class PlacementServer {
   std::shared_ptr<const SceneGenerator> generator_;
   std::mutex seedMutex_;  // guards seedStream_
   std::mt19937_64 seedStream_;
-  std::mutex publishMutex_;  // one scene's frames and markers at a time
+  std::mutex publishMutex_;  // one scene's frames and markers at a time; guards the last ones
+  std::map<std::string, geometry_msgs::TransformStamped> frames_;  // every frame sent, by child
+  visualization_msgs::MarkerArray lastMarkers_;
+  ros::WallTimer masterTimer_;
+  bool masterUp_ = true;
 };
 
 }  // namespace ros_interface

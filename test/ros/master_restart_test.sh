@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Master restart: the node notices, registers its services and topics again, re-broadcasts its
+# last scene, and keeps answering. Runs its own master on a free port; cleans up after itself.
+set -euo pipefail
+node_bin=$1
+config=$2
+port=$(/usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+export ROS_MASTER_URI=http://localhost:$port ROS_HOSTNAME=localhost
+log=$(mktemp -d)
+pids=()
+cleanup() {
+  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
+  pkill -f "rosmaster --core -p $port" 2>/dev/null || true
+  rm -rf "$log"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*"; echo "--- node log"; cat "$log/node.log" || true; exit 1; }
+
+start_master() {
+  roscore -p "$port" >"$log/core.log" 2>&1 &
+  pids+=($!)
+  for _ in $(seq 50); do rosparam list >/dev/null 2>&1 && return 0; sleep 0.2; done
+  fail "the master did not start"
+}
+wait_service() {
+  for _ in $(seq 100); do rosservice list 2>/dev/null | grep -q "^$1\$" && return 0; sleep 0.2; done
+  return 1
+}
+
+start_master
+rosparam load "$config" /placement_server
+"$node_bin" >"$log/node.log" 2>&1 &
+node=$!
+pids+=($node)
+wait_service /placement_server/sample_placements || fail "no service at start"
+rosservice call /placement_server/sample_placements "{seed: 5}" | grep -q "success: True" || fail "first call"
+
+# Stop the master: the node must survive it.
+kill "${pids[0]}"; pkill -f "rosmaster --core -p $port" || true
+sleep 3
+kill -0 "$node" || fail "the node died with the master"
+start_master
+wait_service /placement_server/sample_placements || fail "service not registered again within 20 s"
+wait_service /placement_server/reload || fail "reload not registered again"
+frames=$(timeout 10 rostopic echo -n 1 /tf_static | grep -c child_frame_id || true)
+[ "$frames" -ge 7 ] || fail "expected the 7 frames of the last scene on /tf_static, got $frames"
+rosservice call /placement_server/sample_placements "{seed: 6}" | grep -q "success: True" || fail "call after restart"
+timeout 10 rostopic echo -n 1 /placement_server/markers >/dev/null || fail "no markers after restart"
+grep -q "the master is back" "$log/node.log" || fail "the node did not report the restart"
+echo "master restart: 1 passed, 0 failed"
