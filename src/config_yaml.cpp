@@ -95,7 +95,13 @@ ConfigNode parseYaml(const std::string& text, const std::string& origin) {
   if (!document.IsMap()) {
     throw ConfigError(origin + ": the configuration must be a map of parameters");
   }
-  convert(document, root);
+  try {
+    convert(document, root);
+  } catch (const YAML::Exception& e) {
+    // For example a key that is itself a list or a map.
+    throw ConfigError(origin + ": unsupported YAML at line " + std::to_string(e.mark.line + 1) +
+                      ": " + e.msg);
+  }
   return root;
 }
 

@@ -231,6 +231,32 @@ TEST_F(PlacementServerTest, FailureNamesObjectSamplerAndBlocker) {
             "overlapped fixture 'wall'");
 }
 
+// max_request_seconds (2 s in the test configuration) bounds an absurd max_attempts.
+TEST_F(PlacementServerTest, TimeLimitStopsAHopelessRequest) {
+  SamplePlacements::Request r = seeded(12);
+  r.sampler = "TableSampler";
+  r.max_attempts = 4000000000u;
+  placement_samplers::Fixture wall;
+  wall.name = "wall";
+  wall.shape.type = shape_msgs::SolidPrimitive::BOX;
+  wall.shape.dimensions = {2.0, 2.0, 0.5};
+  wall.pose.position.z = 0.8;
+  wall.pose.orientation.w = 1.0;
+  r.fixtures.push_back(wall);
+  const ros::WallTime start = ros::WallTime::now();
+  const SamplePlacements srv = call(r);
+  const double seconds = (ros::WallTime::now() - start).toSec();
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_EQ(srv.response.message.rfind("stopped placing object 'cube' with sampler 'TableSampler' after ", 0), 0u)
+      << srv.response.message;
+  const std::string suffix = " attempts: the request ran out of time";
+  ASSERT_GT(srv.response.message.size(), suffix.size());
+  EXPECT_EQ(srv.response.message.substr(srv.response.message.size() - suffix.size()), suffix);
+  EXPECT_LT(seconds, 6.0);
+  // What was achieved comes back: the scene, with the objects placed before the stop (none).
+  ASSERT_EQ(srv.response.scenes.size(), 1u);
+}
+
 TEST_F(PlacementServerTest, BadRequestsAnswerWithTheReason) {
   struct Case {
     std::string what;
