@@ -1,5 +1,6 @@
 #include "placement_samplers/sample_scenes_cli.hpp"
 
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 
@@ -102,7 +103,10 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     return 2;
   }
   try {
-    const SceneGenerator generator(buildSceneConfig(tree));
+    BuildOptions options;
+    // Relative mesh and URDF paths are relative to the configuration file.
+    options.baseDirectory = std::filesystem::path(configPath).parent_path().string();
+    const SceneGenerator generator(buildSceneConfig(tree, options));
     SampleRequest request;
     request.sampler = sampler;
     request.maxAttempts = maxAttempts;

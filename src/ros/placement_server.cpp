@@ -15,8 +15,28 @@ namespace ros_interface {
 PlacementServer::PlacementServer(const ros::NodeHandle& privateHandle)
     : privateHandle_(privateHandle) {}
 
+namespace {
+
+/// The configuration in the parameters; urdf_param objects read their URDF from the parameter
+/// server (names resolved as any ROS name: relative to the node's namespace, ~ = private).
+std::shared_ptr<const SceneGenerator> loadGenerator(const ros::NodeHandle& privateHandle) {
+  BuildOptions options;
+  options.urdfParam = [](const std::string& name) {
+    std::string text;
+    if (!ros::param::get(name, text)) {
+      throw ConfigError("parameter '" + ros::names::resolve(name) +
+                        "' does not exist or does not hold URDF text");
+    }
+    return text;
+  };
+  return std::make_shared<const SceneGenerator>(
+      buildSceneConfig(readParameters(privateHandle), options));
+}
+
+}  // namespace
+
 void PlacementServer::start() {
-  auto generator = std::make_shared<const SceneGenerator>(buildSceneConfig(readParameters(privateHandle_)));
+  auto generator = loadGenerator(privateHandle_);
   const std::uint64_t seed = generator->config().seed;
   seedStream_.seed(seed != 0 ? seed : randomSeed());
   {
@@ -153,8 +173,7 @@ void PlacementServer::publish(const SceneGenerator& generator, const PreparedReq
 
 bool PlacementServer::reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   try {
-    auto generator =
-        std::make_shared<const SceneGenerator>(buildSceneConfig(readParameters(privateHandle_)));
+    auto generator = loadGenerator(privateHandle_);
     {
       std::lock_guard<std::mutex> lock(generatorMutex_);
       generator_ = generator;

@@ -22,6 +22,21 @@ start_master() {
   for _ in $(seq 50); do rosparam list >/dev/null 2>&1 && return 0; sleep 0.2; done
   fail "the master did not start"
 }
+# A call right after (re-)registration has been seen to fail once under heavy load with
+# "Network communication failed"; allow a few tries, and say when one was needed.
+call_ok() {
+  local out
+  for try in 1 2 3 4 5; do
+    out=$(rosservice call /placement_server/sample_placements "$1" 2>&1) || true
+    if echo "$out" | grep -q "success: True"; then
+      [ "$try" -gt 1 ] && echo "note: call $1 needed $try tries"
+      return 0
+    fi
+    sleep 1
+  done
+  echo "$out"
+  return 1
+}
 wait_service() {
   for _ in $(seq 100); do rosservice list 2>/dev/null | grep -q "^$1\$" && return 0; sleep 0.2; done
   return 1
@@ -33,7 +48,7 @@ rosparam load "$config" /placement_server
 node=$!
 pids+=($node)
 wait_service /placement_server/sample_placements || fail "no service at start"
-rosservice call /placement_server/sample_placements "{seed: 5}" | grep -q "success: True" || fail "first call"
+call_ok "{seed: 5}" || fail "first call"
 
 # Stop the master: the node must survive it.
 kill "${pids[0]}"; pkill -f "rosmaster --core -p $port" || true
@@ -44,7 +59,7 @@ wait_service /placement_server/sample_placements || fail "service not registered
 wait_service /placement_server/reload || fail "reload not registered again"
 frames=$(timeout 10 rostopic echo -n 1 /tf_static | grep -c child_frame_id || true)
 [ "$frames" -ge 7 ] || fail "expected the 7 frames of the last scene on /tf_static, got $frames"
-rosservice call /placement_server/sample_placements "{seed: 6}" | grep -q "success: True" || fail "call after restart"
+call_ok "{seed: 6}" || fail "call after restart"
 timeout 10 rostopic echo -n 1 /placement_server/markers >/dev/null || fail "no markers after restart"
 grep -q "the master is back" "$log/node.log" || fail "the node did not report the restart"
 echo "master restart: 1 passed, 0 failed"
