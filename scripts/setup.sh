@@ -12,7 +12,7 @@ PS_PACKAGES=(
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs
   libshape-msgs-dev ros-shape-msgs libstd-srvs-dev ros-std-srvs
   libtf2-dev libtf2-ros-dev libtf2-eigen-dev python3-tf2-ros tf2-tools
-  liburdf-dev liburdfdom-dev libfcl-dev libeigen3-dev
+  liburdf-dev liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev
   libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
   librostest-dev python3-rostest python3-rospy python3-nose libgtest-dev libbenchmark-dev
   libyaml-cpp-dev

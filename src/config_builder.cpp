@@ -14,14 +14,18 @@ namespace {
 /// State of one build: the names that a reference may use at each point of the sampling order.
 class Builder {
  public:
-  explicit Builder(SceneConfig& config) : config_(config) {}
+  Builder(SceneConfig& config, const BuildOptions& options)
+      : config_(config),
+        options_(options),
+        meshes_(options.packageResolver, options.baseDirectory) {}
 
   void objects(const ConfigNode& node) {
     for (const auto& entry : node.entries()) {
       if (!isValidName(entry.first)) {
         entry.second.fail("object names must match [A-Za-z0-9_-]+");
       }
-      config_.objects.push_back(std::make_shared<ObjectModel>(parseObject(entry.first, entry.second)));
+      config_.objects.push_back(
+          std::make_shared<ObjectModel>(parseObject(entry.first, entry.second, options_, meshes_)));
     }
   }
 
@@ -239,6 +243,8 @@ class Builder {
   }
 
   SceneConfig& config_;
+  const BuildOptions& options_;
+  MeshLoader meshes_;                  // each mesh file read once per build
   std::set<std::string> available_;    // fixtures and objects placed so far, in sampling order
   std::set<std::string> assigned_;     // objects that have a sampler
   std::set<std::string> samplerNames_;
@@ -262,6 +268,10 @@ CollisionMode parseCollisionMode(const ConfigNode& node) {
 }
 
 std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
+  return buildSceneConfig(root, BuildOptions());
+}
+
+std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const BuildOptions& options) {
   root.checkKeys({"frame_id", "tf_prefix", "seed", "collision_check", "collision_margin",
                   "max_attempts", "objects", "fixtures", "samplers", "hide", "threads",
                   "max_scenes_per_request", "max_request_seconds"});
@@ -303,7 +313,7 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
       n->fail("expected a positive duration in [s]");
     }
   }
-  Builder builder(*config);
+  Builder builder(*config, options);
   if (const ConfigNode* n = root.get("objects")) {
     builder.objects(*n);
   }

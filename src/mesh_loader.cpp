@@ -201,8 +201,10 @@ Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale, const s
   // rviz and the ROS tools keep a mesh's z axis up, whatever COLLADA's up_axis says.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  // Normals dropped so that STL's per-facet copies of a vertex merge into one.
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_DropNormals |
+                                  aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     std::string why = importer.GetErrorString();
     throw ConfigError(where + ": cannot read it as a mesh: " + (why.empty() ? "unknown error" : why));

@@ -1,10 +1,12 @@
 #include "placement_samplers/object_config.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/urdf_geometry.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -19,9 +21,91 @@ double positive(const ConfigNode& node) {
   return v;
 }
 
-Shape parsePrimitive(const ConfigNode& node) {
+Shape parseMesh(const std::string& name, const ConfigNode& node, MeshLoader& meshes) {
+  node.checkKeys({"shape", "mesh", "scale", "horizontal_radius", "bottom_offset", "top_offset",
+                  "init_orientation"});
+  const ConfigNode& uri = node.at("mesh");
+  const std::string& uriText = uri.asString();
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  if (const ConfigNode* s = node.get("scale")) {
+    scale = s->asVector3();
+    if ((scale.array() <= 0.0).any()) {
+      s->fail("expected three positive scale factors [sx, sy, sz]");
+    }
+  }
+  Shape shape;
+  shape.type = ShapeType::Mesh;
+  try {
+    shape.mesh = meshes.load(uriText, scale);
+  } catch (const ConfigError& e) {
+    uri.fail("object '" + name + "': " + e.what());
+  }
+  return shape;
+}
+
+/// The shapes of a `urdf_file` or `urdf_param` object.
+std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
+                             const BuildOptions& options, MeshLoader& meshes) {
+  node.checkKeys({"urdf_file", "urdf_param", "link", "horizontal_radius", "bottom_offset",
+                  "top_offset", "init_orientation"});
+  const ConfigNode* file = node.get("urdf_file");
+  const ConfigNode* param = node.get("urdf_param");
+  if (file != nullptr && param != nullptr) {
+    node.fail("give either urdf_file or urdf_param, not both");
+  }
+  const ConfigNode& source = file != nullptr ? *file : *param;
+  std::string link;
+  if (const ConfigNode* l = node.get("link")) {
+    link = l->asString();
+    if (link.empty()) {
+      l->fail("expected a link name");
+    }
+  }
+  const std::string object = "object '" + name + "': ";
+  std::string text;
+  std::string label;
+  std::string meshBase;
+  if (file != nullptr) {
+    const std::string& uri = file->asString();
+    std::string path;
+    try {
+      path = meshes.resolve(uri);
+    } catch (const ConfigError& e) {
+      file->fail(object + "urdf_file " + e.what());
+    }
+    label = "urdf_file '" + uri + "'" + (path != uri ? " (" + path + ")" : "");
+    try {
+      text = readTextFile(path);
+    } catch (const ConfigError& e) {
+      file->fail(object + label + ": " + e.what());
+    }
+    // A relative mesh path in a URDF file is relative to the file.
+    meshBase = std::filesystem::path(path).parent_path().string();
+  } else {
+    const std::string& paramName = param->asString();
+    label = "urdf_param '" + paramName + "'";
+    if (!options.urdfParam) {
+      param->fail(object + "urdf_param is only available in the node (use urdf_file here)");
+    }
+    try {
+      text = options.urdfParam(paramName);
+    } catch (const std::exception& e) {
+      param->fail(object + label + ": " + e.what());
+    }
+  }
+  try {
+    return urdfCollisionShapes(text, link, meshes, meshBase);
+  } catch (const ConfigError& e) {
+    source.fail(object + label + ": " + e.what());
+  }
+}
+
+Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader& meshes) {
   const ConfigNode& shapeNode = node.at("shape");
   const std::string& type = shapeNode.asString();
+  if (type == "mesh") {
+    return parseMesh(name, node, meshes);
+  }
   if (type == "box") {
     node.checkKeys({"shape", "size", "horizontal_radius", "bottom_offset", "top_offset",
                     "init_orientation"});
@@ -47,7 +131,7 @@ Shape parsePrimitive(const ConfigNode& node) {
                     "init_orientation"});
     return Shape::sphere(positive(node.at("radius")));
   }
-  shapeNode.fail("expected one of box, cylinder, sphere, capsule, got '" + type + "'");
+  shapeNode.fail("expected one of box, cylinder, sphere, capsule, mesh, got '" + type + "'");
 }
 
 }  // namespace
@@ -94,14 +178,25 @@ void validateShape(const Shape& shape) {
 }
 
 ObjectModel parseObject(const std::string& name, const ConfigNode& node) {
+  MeshLoader meshes;
+  return parseObject(name, node, BuildOptions(), meshes);
+}
+
+ObjectModel parseObject(const std::string& name, const ConfigNode& node,
+                        const BuildOptions& options, MeshLoader& meshes) {
   if (!node.isMap()) {
     node.fail("expected a map with the object's shape and sizes, got " +
               std::string(ConfigNode::typeName(node.type())));
   }
-  if (node.get("shape") == nullptr) {
-    node.fail("missing required key 'shape' (box, cylinder, sphere or capsule)");
+  std::vector<Shape> shapes;
+  if (node.get("urdf_file") != nullptr || node.get("urdf_param") != nullptr) {
+    shapes = parseUrdf(name, node, options, meshes);
+  } else {
+    if (node.get("shape") == nullptr) {
+      node.fail("missing required key 'shape' (box, cylinder, sphere, capsule or mesh), or urdf_file or urdf_param");
+    }
+    shapes.push_back(parsePrimitive(name, node, meshes));
   }
-  Shape shape = parsePrimitive(node);
 
   ObjectOverrides overrides;
   if (const ConfigNode* r = node.get("horizontal_radius")) {
@@ -123,7 +218,6 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node) {
   if (const ConfigNode* q = node.get("init_orientation")) {
     init = parseQuaternion(*q);
   }
-  std::vector<Shape> shapes{shape};
   return makeObject(name, std::move(shapes), init, overrides);
 }
 

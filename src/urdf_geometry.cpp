@@ -51,7 +51,9 @@ urdf::ModelInterfaceSharedPtr parse(const std::string& xml) {
     exception = e.what();
   }
   console_bridge::restorePreviousOutputHandler();
-  if (!model) {
+  // urdfdom drops a collision element it cannot parse (a "nan" size, an unknown geometry) and
+  // still returns a model: geometry silently missing would be worse than an error.
+  if (!model || !exception.empty() || !capture.errors().empty()) {
     std::string why = !exception.empty() ? exception : capture.errors();
     if (why.empty()) {
       why = "urdfdom gave no reason";

@@ -251,9 +251,9 @@ TEST(ConfigBuilder, YamlSyntaxAndDocumentErrors) {
 
 TEST(ConfigBuilder, ObjectShapeErrors) {
   EXPECT_EQ(buildError("objects:\n  cube: {size: [1, 1, 1]}\n"),
-            "objects.cube: missing required key 'shape' (box, cylinder, sphere or capsule)");
+            "objects.cube: missing required key 'shape' (box, cylinder, sphere, capsule or mesh), or urdf_file or urdf_param");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: cube, size: [1, 1, 1]}\n"),
-            "objects.cube.shape: expected one of box, cylinder, sphere, capsule, got 'cube'");
+            "objects.cube.shape: expected one of box, cylinder, sphere, capsule, mesh, got 'cube'");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: 3}\n"),
             "objects.cube.shape: expected a string, got an integer (3)");
   EXPECT_EQ(buildError("objects:\n  cube: [1, 2]\n"),
