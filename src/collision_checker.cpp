@@ -1,8 +1,72 @@
 #include "placement_samplers/collision_checker.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/fcl_checker.hpp"
 
 namespace placement_samplers {
+
+namespace {
+
+constexpr int kWrapBits = 5;
+/// Buckets per axis of a grid: cells further apart share buckets (32 cells of 12.5 cm for
+/// 3 cm objects: 4 m before two cells share one).
+constexpr std::int64_t kWrap = std::int64_t{1} << kWrapBits;
+constexpr std::size_t kBuckets = static_cast<std::size_t>(kWrap * kWrap);
+/// In grid mode, a grid with at most this many entries (a table, a few plates) is scanned:
+/// cheaper than visiting its cells.
+constexpr std::size_t kGridScanLimit = 8;
+/// Cells are at least this many horizontal radii wide: half a cell then covers the reach of a
+/// candidate as large as the entries (two radii), so it needs only its own cell.
+constexpr double kCellPerRadius = 4.0;
+/// Smallest cell exponent: 2^-20 m, about 1 um (zero radii need some cell).
+constexpr int kMinExponent = -20;
+/// Radii from here on go to the always-scanned list: their squared reach would overflow.
+constexpr double kHugeRadius = 1e150;
+/// Cell indices are clamped to +/- 2^52.
+constexpr double kCellLimit = 4503599627370496.0;
+
+/// floor(v * inverse) clamped to +/- 2^52, without a branch to mispredict. Monotone in v, so a
+/// range of coordinates maps onto a range of cells and clamping never loses a neighbour.
+inline std::int64_t cellIndex(double v, double inverse) {
+  const double t = std::min(kCellLimit, std::max(-kCellLimit, v * inverse));  // NaN -> -limit
+  const auto i = static_cast<std::int64_t>(t);  // rounds toward zero
+  return i - static_cast<std::int64_t>(t < static_cast<double>(i));
+}
+
+inline std::size_t bucketOf(std::int64_t ix, std::int64_t iy) {
+  return static_cast<std::size_t>(((ix & (kWrap - 1)) << kWrapBits) | (iy & (kWrap - 1)));
+}
+
+/// The smallest e >= kMinExponent with 2^e >= kCellPerRadius * r, for finite r >= 0, read off
+/// the bits (std::frexp is a library call, and this runs for every placement).
+int cellExponent(double r) {
+  const double v = kCellPerRadius * r;
+  if (!(v >= std::ldexp(1.0, kMinExponent))) {
+    return kMinExponent;
+  }
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &v, sizeof(bits));
+  const int exponent = static_cast<int>((bits >> 52) & 0x7ff) - 1023;  // v = 1.m * 2^exponent
+  const bool power = (bits & ((std::uint64_t{1} << 52) - 1)) == 0;
+  return power ? exponent : exponent + 1;
+}
+
+/// The candidate's values the test reads.
+struct Probe {
+  double x, y, z, radius, bottom;
+};
+
+inline Probe probeOf(const Candidate& candidate) {
+  return Probe{candidate.position.x(), candidate.position.y(), candidate.position.z(),
+               candidate.object->horizontalRadius, candidate.object->bottomOffset.z()};
+}
+
+}  // namespace
 
 bool radiusOverlap(const PlacedEntry& other, const Candidate& candidate) {
   const double dx = candidate.position.x() - other.position.x();
@@ -13,14 +77,285 @@ bool radiusOverlap(const PlacedEntry& other, const Candidate& candidate) {
              other.object->topOffset.z() - candidate.object->bottomOffset.z();
 }
 
-std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& entries,
-                                             const Candidate& candidate) const {
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    if (radiusOverlap(entries[i], candidate)) {
-      return static_cast<std::ptrdiff_t>(i);
+/// What the test reads of an entry, packed: position [m], horizontal radius [m] and top
+/// offset z [m].
+struct RadiusChecker::Item {
+  double x;
+  double y;
+  double z;
+  double radius;
+  double top;
+
+  /// radiusOverlap's expression in its operation order: the answer is the full scan's, bit
+  /// for bit. & rather than &&: both halves are cheap, and one branch less to mispredict.
+  bool overlaps(const Probe& p) const {
+    const double dx = p.x - x;
+    const double dy = p.y - y;
+    const double reach = radius + p.radius;
+    return (dx * dx + dy * dy <= reach * reach) & (p.z - z <= top - p.bottom);
+  }
+};
+
+/// One uniform grid: cells of 2^exponent m, wrapped onto kWrap x kWrap buckets. An entry is
+/// listed in every cell its square of side one cell, centred on it, touches (2 x 2 cells
+/// mostly), so a candidate within half a cell of it finds it in the candidate's own cell: one
+/// list to walk, where the candidate's 2 x 2 neighbours would be four, with four ends to
+/// mispredict. Lists keep ascending entry order, so their first hit is the lowest index.
+struct RadiusChecker::Grid {
+  /// An entry's copy in one bucket list.
+  struct Node {
+    Item item;
+    std::int32_t index;   ///< entry index
+    std::int32_t next;    ///< next node of the same bucket, -1 = none
+    std::uint32_t bucket;
+  };
+
+  explicit Grid(int e)
+      : exponent(e), half(std::ldexp(0.5, e)), inverse(std::ldexp(1.0, -e)),
+        ownCellLimit(std::ldexp(0.5, e) * (1.0 - 1e-6)), coordinateLimit(std::ldexp(1e6, e)) {}
+
+  int exponent;
+  double half;             ///< half a cell [m]: how far an entry is listed around itself
+  double inverse;          ///< 1 / cell size [1/m]
+  /// Queries reaching at most this far [m] need only the candidate's cell. Slightly below
+  /// half a cell, and only within coordinateLimit [m] of the origin, so that rounding in
+  /// entry +/- half cannot lose a neighbour.
+  double ownCellLimit;
+  double coordinateLimit;
+  double maxRadius = 0.0;             ///< largest |horizontal radius| of the members [m]
+  std::vector<std::int32_t> members;  ///< entry indices, ascending
+  bool bucketed = false;              ///< members are in the buckets
+  std::vector<Node> nodes;            ///< the bucket lists' nodes
+  std::vector<std::int32_t> head;     ///< first node of each bucket, -1 = empty
+  std::vector<std::int32_t> tail;     ///< last node of each bucket, -1 = empty
+
+  /// Lowest colliding index among the members below @p best, or @p best.
+  std::int32_t scan(const std::vector<Item>& items, const Probe& p, std::int32_t best) const {
+    for (const std::int32_t i : members) {
+      if (i >= best) {
+        break;
+      }
+      if (items[static_cast<std::size_t>(i)].overlaps(p)) {
+        return i;
+      }
+    }
+    return best;
+  }
+
+  void insert(const std::vector<Item>& items, std::int32_t index) {
+    const Item& item = items[static_cast<std::size_t>(index)];
+    const std::int64_t x0 = cellIndex(item.x - half, inverse);
+    const std::int64_t x1 = cellIndex(item.x + half, inverse);
+    const std::int64_t y0 = cellIndex(item.y - half, inverse);
+    const std::int64_t y1 = cellIndex(item.y + half, inverse);
+    // 2 x 2 cells, 3 when rounding straddles a boundary, and at most the kWrap buckets.
+    for (std::int64_t ix = x0; ix <= x1 && ix < x0 + kWrap; ++ix) {
+      for (std::int64_t iy = y0; iy <= y1 && iy < y0 + kWrap; ++iy) {
+        const std::size_t b = bucketOf(ix, iy);
+        const auto node = static_cast<std::int32_t>(nodes.size());
+        nodes.push_back(Node{item, index, -1, static_cast<std::uint32_t>(b)});
+        if (tail[b] < 0) {
+          head[b] = node;
+        } else {
+          nodes[static_cast<std::size_t>(tail[b])].next = node;
+        }
+        tail[b] = node;
+      }
     }
   }
-  return kNone;
+
+  void add(const std::vector<Item>& items, std::int32_t index, double radius) {
+    maxRadius = std::max(maxRadius, radius);
+    members.push_back(index);
+    if (bucketed) {
+      insert(items, index);
+    } else if (members.size() > kGridScanLimit) {
+      if (head.empty()) {
+        head.assign(kBuckets, -1);
+        tail.assign(kBuckets, -1);
+      }
+      for (const std::int32_t m : members) {
+        insert(items, m);
+      }
+      bucketed = true;
+    }
+  }
+
+  /// Forgets the members, resetting only the buckets they used.
+  void clear() {
+    for (const Node& node : nodes) {
+      head[node.bucket] = -1;
+      tail[node.bucket] = -1;
+    }
+    nodes.clear();
+    bucketed = false;
+    members.clear();
+    maxRadius = 0.0;
+  }
+
+  /// Lowest colliding index below @p best, or @p best.
+  std::int32_t query(const std::vector<Item>& items, const Probe& p, std::int32_t best) const {
+    if (!bucketed) {
+      return scan(items, p, best);
+    }
+    const double reach = std::abs(p.radius) + maxRadius;
+    // The test accepts up to a distance of reach plus rounding; the margin covers that and the
+    // rounding of x +/- far with room to spare (1e-12 relative, 1e-100 m where dx * dx would
+    // underflow to zero).
+    const double far = reach * (1.0 + 1e-12) + 1e-12 * (std::abs(p.x) + std::abs(p.y)) + 1e-100;
+    if (far <= ownCellLimit && std::abs(p.x) <= coordinateLimit &&
+        std::abs(p.y) <= coordinateLimit) {
+      // The usual case: everything within reach is listed in the candidate's own cell.
+      const std::size_t b = bucketOf(cellIndex(p.x, inverse), cellIndex(p.y, inverse));
+      for (std::int32_t n = head[b]; n >= 0;) {
+        const Node& node = nodes[static_cast<std::size_t>(n)];
+        if (node.index >= best) {
+          break;
+        }
+        if (node.item.overlaps(p)) {
+          return node.index;
+        }
+        n = node.next;
+      }
+      return best;
+    }
+    // A larger candidate: every cell within reach. Each entry is listed in its own cell (and
+    // maybe a few more: seeing it twice does no harm).
+    const std::int64_t x0 = cellIndex(p.x - far, inverse);
+    const std::int64_t x1 = cellIndex(p.x + far, inverse);
+    const std::int64_t y0 = cellIndex(p.y - far, inverse);
+    const std::int64_t y1 = cellIndex(p.y + far, inverse);
+    const double cells = (static_cast<double>(x1 - x0) + 1.0) * (static_cast<double>(y1 - y0) + 1.0);
+    if (cells > static_cast<double>(members.size())) {
+      return scan(items, p, best);  // a candidate much larger than the members (a table)
+    }
+    const std::int64_t nx = std::min(x1 - x0 + 1, kWrap);
+    const std::int64_t ny = std::min(y1 - y0 + 1, kWrap);
+    for (std::int64_t ix = x0; ix < x0 + nx; ++ix) {
+      for (std::int64_t iy = y0; iy < y0 + ny; ++iy) {
+        for (std::int32_t n = head[bucketOf(ix, iy)]; n >= 0;) {
+          const Node& node = nodes[static_cast<std::size_t>(n)];
+          if (node.index >= best) {
+            break;
+          }
+          if (node.item.overlaps(p)) {
+            best = node.index;
+            break;
+          }
+          n = node.next;
+        }
+      }
+    }
+    return best;
+  }
+};
+
+RadiusChecker::RadiusChecker(std::size_t scanLimit) : scanLimit_(scanLimit) {}
+RadiusChecker::~RadiusChecker() = default;
+
+void RadiusChecker::clear() {
+  for (Grid* grid : active_) {
+    grid->clear();
+  }
+  active_.clear();
+  lastGrid_ = nullptr;
+  unbounded_.clear();
+  items_.clear();
+  gridMode_ = false;
+}
+
+void RadiusChecker::added(const std::vector<PlacedEntry>& entries, std::size_t index) {
+  if (index != items_.size()) {
+    // Not announced in order (a caller other than SampleContext): index everything again.
+    clear();
+    for (std::size_t i = 0; i < index; ++i) {
+      added(entries, i);
+    }
+  }
+  const PlacedEntry& entry = entries[index];
+  items_.push_back(Item{entry.position.x(), entry.position.y(), entry.position.z(),
+                        entry.object->horizontalRadius, entry.object->topOffset.z()});
+  if (gridMode_) {
+    indexEntry(index);
+  } else if (items_.size() > scanLimit_) {
+    gridMode_ = true;
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+      indexEntry(i);
+    }
+  }
+}
+
+void RadiusChecker::indexEntry(std::size_t index) {
+  const Item& item = items_[index];
+  const auto i = static_cast<std::int32_t>(index);
+  const double r = std::abs(item.radius);
+  if (!std::isfinite(item.x) || !std::isfinite(item.y) || !(r < kHugeRadius)) {
+    unbounded_.push_back(i);
+    return;
+  }
+  const int exponent = cellExponent(r);
+  Grid* grid = lastGrid_;  // placements mostly come in runs of one size
+  if (grid == nullptr || grid->exponent != exponent) {
+    grid = nullptr;
+    for (Grid* g : active_) {
+      if (g->exponent == exponent) {
+        grid = g;
+        break;
+      }
+    }
+    if (grid == nullptr) {
+      for (const std::unique_ptr<Grid>& g : grids_) {
+        if (g->exponent == exponent) {
+          grid = g.get();
+          break;
+        }
+      }
+      if (grid == nullptr) {
+        grids_.push_back(std::make_unique<Grid>(exponent));
+        grid = grids_.back().get();
+      }
+      active_.push_back(grid);
+    }
+    lastGrid_ = grid;
+  }
+  grid->add(items_, i, r);
+}
+
+std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& entries,
+                                             const Candidate& candidate) const {
+  const std::size_t n = items_.size();
+  if (entries.size() != n) {
+    // Entries the checker was not told about: robosuite's scan over them.
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (radiusOverlap(entries[i], candidate)) {
+        return static_cast<std::ptrdiff_t>(i);
+      }
+    }
+    return kNone;
+  }
+  const Probe p = probeOf(candidate);
+  if (!gridMode_ || !std::isfinite(p.x) || !std::isfinite(p.y) ||
+      !(std::abs(p.radius) < kHugeRadius)) {
+    // Few entries, or a candidate no range of cells can bound: the scan, in index order.
+    for (std::size_t i = 0; i < n; ++i) {
+      if (items_[i].overlaps(p)) {
+        return static_cast<std::ptrdiff_t>(i);
+      }
+    }
+    return kNone;
+  }
+  const auto none = static_cast<std::int32_t>(n);
+  std::int32_t best = none;
+  for (const std::int32_t i : unbounded_) {
+    if (items_[static_cast<std::size_t>(i)].overlaps(p)) {
+      best = i;
+      break;
+    }
+  }
+  for (const Grid* grid : active_) {
+    best = grid->query(items_, p, best);
+  }
+  return best < none ? static_cast<std::ptrdiff_t>(best) : kNone;
 }
 
 const char* collisionModeName(CollisionMode mode) {
@@ -35,12 +370,19 @@ const char* collisionModeName(CollisionMode mode) {
   return "unknown";
 }
 
-std::unique_ptr<CollisionChecker> makeCollisionChecker(CollisionMode mode, double /*margin*/) {
+std::unique_ptr<CollisionChecker> makeCollisionChecker(CollisionMode mode, double margin) {
   if (mode == CollisionMode::Radius) {
     return std::make_unique<RadiusChecker>();
   }
-  throw ConfigError(std::string("collision_check '") + collisionModeName(mode) +
-                    "' is not available in this build (only 'radius')");
+  if (!std::isfinite(margin) || margin < 0.0) {
+    throw ConfigError("collision_margin must be finite and non-negative, got " +
+                      std::to_string(margin));
+  }
+  if (mode == CollisionMode::Fcl) {
+    return std::make_unique<FclChecker>(margin);
+  }
+  return std::make_unique<CombinedChecker>(std::make_unique<RadiusChecker>(),
+                                           std::make_unique<FclChecker>(margin));
 }
 
 }  // namespace placement_samplers

@@ -28,6 +28,24 @@ void SampleContext::addPlacement(ObjectPlacement placement) {
   placements_.push_back(std::move(placement));
 }
 
+void SampleContext::addPlacement(const std::string& sampler, const Candidate& candidate,
+                                 std::uint32_t attempts, bool hidden) {
+  ObjectPlacement& placement = placements_.emplace_back();
+  placement.name = candidate.object->name;
+  placement.sampler = sampler;
+  placement.position = candidate.position;
+  placement.orientation = candidate.orientation;
+  placement.attempts = attempts;
+  placement.object = candidate.object;
+  placement.hidden = hidden;
+  PlacedEntry& entry = entries_.emplace_back();
+  entry.name = placement.name;
+  entry.object = candidate.object;
+  entry.position = candidate.position;
+  entry.orientation = candidate.orientation;
+  checker_.added(entries_, entries_.size() - 1);
+}
+
 const PlacedEntry* SampleContext::find(const std::string& name) const {
   for (const PlacedEntry& entry : entries_) {
     if (entry.name == name) {

@@ -19,7 +19,8 @@ class SceneGenerator::Worker {
   Worker(const PreparedRequest& request, double margin)
       : request_(request),
         checker_(makeCollisionChecker(request.collisionCheck, margin)),
-        context_(engine_, *checker_, request.maxAttempts) {}
+        context_(engine_, *checker_, request.maxAttempts),
+        objects_(request.sampler->objects().size()) {}
 
   void setDeadline(std::optional<std::chrono::steady_clock::time_point> deadline) {
     context_.setDeadline(deadline);
@@ -32,6 +33,8 @@ class SceneGenerator::Worker {
     for (const FixtureSpec& f : request_.fixtures) {
       context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
     }
+    // Each result takes the placements away: one allocation of the right size, not a growth.
+    context_.placements().reserve(objects_);
     SceneResult result;
     result.seed = seed;
     result.index = index;
@@ -48,6 +51,7 @@ class SceneGenerator::Worker {
   Engine engine_;
   std::unique_ptr<CollisionChecker> checker_;
   SampleContext context_;
+  std::size_t objects_;  ///< objects the sampler places
 };
 
 SceneGenerator::SceneGenerator(std::shared_ptr<const SceneConfig> config)

@@ -9,6 +9,12 @@
 namespace placement_samplers {
 namespace {
 
+/// uniform(engine, low, high), without a draw when the interval is a point: uniform then gives
+/// low + 0.0 (which turns -0.0 into 0.0), so the value is the same and the draw is saved.
+inline double uniformOrPoint(Engine& engine, double low, double high) {
+  return low == high ? low + 0.0 : uniform(engine, low, high);
+}
+
 std::string rangeText(const Eigen::Vector2d& r) {
   std::ostringstream out;
   out << "[" << r[0] << ", " << r[1] << "]";
@@ -121,7 +127,7 @@ Eigen::Quaterniond UniformRandomSampler::sampleOrientation(Engine& engine,
   if (params_.rotation.kind == RotationSpec::Kind::Full) {
     angle = uniform(engine, 0.0, 2.0 * M_PI);
   } else if (params_.rotation.kind == RotationSpec::Kind::Range) {
-    angle = uniform(engine, params_.rotation.low, params_.rotation.high);
+    angle = uniformOrPoint(engine, params_.rotation.low, params_.rotation.high);
   }
   // A world-axis rotation applied after the initial orientation.
   return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis_)) * object.initOrientation;
@@ -179,8 +185,8 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
       context.fail(std::move(failure));
       return false;
     }
-    candidate.position.x() = uniform(engine, entry.x[0], entry.x[1]) + base.x();
-    candidate.position.y() = uniform(engine, entry.y[0], entry.y[1]) + base.y();
+    candidate.position.x() = uniformOrPoint(engine, entry.x[0], entry.x[1]) + base.x();
+    candidate.position.y() = uniformOrPoint(engine, entry.y[0], entry.y[1]) + base.y();
     if (orientFirst) {
       candidate.orientation = sampleOrientation(engine, object);
     }
@@ -194,15 +200,7 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
     if (!orientFirst) {
       candidate.orientation = sampleOrientation(engine, object);
     }
-    ObjectPlacement placement;
-    placement.name = object.name;
-    placement.sampler = name();
-    placement.position = candidate.position;
-    placement.orientation = candidate.orientation;
-    placement.attempts = attempt;
-    placement.object = &object;
-    placement.hidden = params_.hides;
-    context.addPlacement(std::move(placement));
+    context.addPlacement(name(), candidate, attempt, params_.hides);
     return true;
   }
 

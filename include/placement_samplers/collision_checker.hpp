@@ -50,23 +50,32 @@ class CollisionChecker {
 /// robosuite's test: the x-y circles overlap (touching counts) and the candidate's bottom is
 /// below the other's top: `z - z_o <= top_o - bottom`. One-sided in z, so stacking passes.
 ///
-/// Answers exactly as a scan of every entry in order would (the same entries collide, and the
-/// lowest colliding index is returned), but looks only near the candidate: entries are kept in
-/// uniform grids, one per power-of-two cell size, each entry in the grid whose cells are at
-/// least four times its horizontal radius. A query visits, per grid in use, the cells within
-/// reach of the candidate; a grid with few entries, or a candidate so large that it would cover
-/// more cells than the grid has entries (a table-sized object), is scanned instead. Entries
-/// with a non-finite position or radius are always scanned. The grids wrap around (cell (i, j)
-/// uses bucket (i mod 32, j mod 32)), so objects far outside the work area, at negative
-/// coordinates or hidden 20 m away, need no bounds; the exact test sorts out what shares a
-/// bucket.
+/// Answers exactly as robosuite's scan of every entry in order: the same candidates collide
+/// and the lowest colliding index comes back, from a packed copy of what the test reads. Up
+/// to scanLimit entries it scans that copy (on the machines of docs/benchmarks.md the scan is
+/// the faster one below about a hundred entries). Beyond, it looks only near the candidate:
+/// entries go into uniform grids, one per power-of-two cell size, each into the grid whose
+/// cells are 4 to 8 times its horizontal radius, listed in every cell within half a cell of
+/// it, so that a candidate of the entries' size finds all it can touch in its own cell. A
+/// larger candidate visits every cell within reach, or scans the grid when that would be more
+/// cells than entries (a table-sized object); a grid of a few entries (a table, some plates)
+/// is scanned; entries with a non-finite position or a radius of 1e150 m or more are always
+/// scanned. The grids wrap around (cell (i, j) uses bucket (i mod 32, j mod 32)), so objects
+/// at negative coordinates, far outside the work area or hidden 20 m away need no bounds:
+/// the exact test sorts out what shares a bucket.
 ///
-/// Entries must be announced with added() in index order, after clear(), as SampleContext does;
-/// with any other entry vector the checker falls back to the full scan. Buffers grow to the
-/// largest scene seen and are kept: no allocation per attempt, none per scene once warm.
+/// Entries must be announced with added() in index order after clear(), as SampleContext does;
+/// with another entry vector the checker scans that vector. Buffers grow to the largest scene
+/// seen and are kept: no allocation per attempt, none per scene once warm.
 class RadiusChecker : public CollisionChecker {
  public:
-  RadiusChecker();
+  /// Scenes up to this many entries are scanned: below about 100 entries the scan measured
+  /// faster than the grids (docs/benchmarks.md).
+  static constexpr std::size_t kDefaultScanLimit = 96;
+
+  /// @param scanLimit scenes with at most this many entries are scanned, larger ones use the
+  /// grids (0 = always the grids, as tests do)
+  explicit RadiusChecker(std::size_t scanLimit = kDefaultScanLimit);
   ~RadiusChecker() override;
 
   void clear() override;
@@ -76,28 +85,19 @@ class RadiusChecker : public CollisionChecker {
   bool needsOrientation() const override { return false; }
 
  private:
-  /// What the test reads of an entry, packed: position [m], horizontal radius [m], top offset
-  /// z [m], and the next entry in the same bucket (-1 = none).
-  struct Item {
-    double x;
-    double y;
-    double z;
-    double radius;
-    double top;
-    std::int32_t next;
-  };
+  struct Item;
   struct Grid;
 
-  /// Lowest colliding index among @p indices below @p best (ascending list), or @p best.
-  std::int32_t scanList(const std::vector<std::int32_t>& indices, const Candidate& candidate,
-                        std::int32_t best) const;
-  std::int32_t queryGrid(const Grid& grid, const Candidate& candidate, std::int32_t best) const;
-  void insert(Grid& grid, std::int32_t index);
+  /// Puts entry @p index into its grid, or into the always-scanned list.
+  void indexEntry(std::size_t index);
 
+  std::size_t scanLimit_;
+  bool gridMode_ = false;                ///< more than scanLimit_ entries: the grids are in use
   std::vector<Item> items_;              ///< one per entry, by entry index
-  std::vector<std::int32_t> unbounded_;  ///< entries with a non-finite position or radius
-  std::vector<std::unique_ptr<Grid>> grids_;  ///< every grid ever used; kept for their buffers
+  std::vector<std::int32_t> unbounded_;  ///< entries no cell can hold, ascending
+  std::vector<std::unique_ptr<Grid>> grids_;  ///< every grid ever used, kept for their buffers
   std::vector<Grid*> active_;            ///< grids holding entries of the current scene
+  Grid* lastGrid_ = nullptr;             ///< the grid of the latest entry
 };
 
 /// True when robosuite's test says @p candidate overlaps @p other.

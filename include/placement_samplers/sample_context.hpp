@@ -27,6 +27,10 @@ class SampleContext {
                   const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation);
   /// Records a new placement and makes it an obstacle for the following ones.
   void addPlacement(ObjectPlacement placement);
+  /// The same for @p candidate accepted by sampler @p sampler after @p attempts samples, built
+  /// in place: the samplers' path, without moving strings around.
+  void addPlacement(const std::string& sampler, const Candidate& candidate, std::uint32_t attempts,
+                    bool hidden);
 
   /// The fixture or placed object called @p name, or nullptr.
   const PlacedEntry* find(const std::string& name) const;

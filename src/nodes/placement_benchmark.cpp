@@ -7,13 +7,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "placement_samplers/collision_checker.hpp"
 #include "placement_samplers/config_builder.hpp"
@@ -34,6 +36,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr std::uint64_t kSeed = 20240605;  // every figure uses this request seed
+constexpr std::size_t kCandidatePool = 1 << 16;
 
 /// Options of one run.
 struct Options {
@@ -200,9 +203,10 @@ Setup makeSetup(const ps::ConfigNode& tree, std::optional<ps::CollisionMode> mod
 }
 
 /// The clutter scene: @p n cylinders (radius 0.03 m, height 0.1 m) in one sampler over a
-/// 0.6 m x 0.6 m region, ensure_object_boundary_in_range and ensure_valid_placement on. Built
-/// from YAML text through the same builder as the files in config/.
-std::string clutterYaml(int n) {
+/// square region of half width @p half [m] (0.6 m x 0.6 m by default),
+/// ensure_object_boundary_in_range and ensure_valid_placement on. Built from YAML text through
+/// the same builder as the files in config/.
+std::string clutterYaml(int n, double half = 0.3) {
   std::ostringstream y;
   y << "collision_check: radius\nmax_attempts: 5000\nobjects:\n";
   for (int i = 0; i < n; ++i) {
@@ -212,7 +216,8 @@ std::string clutterYaml(int n) {
   for (int i = 0; i < n; ++i) {
     y << (i ? ", " : "") << "cyl" << i;
   }
-  y << "]\n    x_range: [-0.3, 0.3]\n    y_range: [-0.3, 0.3]\n    rotation:\n"
+  y << "]\n    x_range: [" << -half << ", " << half << "]\n    y_range: [" << -half << ", "
+    << half << "]\n"
        "    rotation_axis: z\n    ensure_object_boundary_in_range: true\n"
        "    ensure_valid_placement: true\n    reference_pos: [0.0, 0.0, 0.8]\n    z_offset: 0.0\n";
   return y.str();
@@ -250,9 +255,54 @@ std::string fmt(const char* format, double v) {
 
 void rule() { std::printf("%s\n", std::string(100, '-').c_str()); }
 
-/// Cost of seeding the engine per scene: seed() plus the first draw (which regenerates all
-/// 312 words of state), against a draw from a running engine.
-void benchSeeding(const Options& options) {
+/// xoshiro256** (Blackman and Vigna), seeded through SplitMix64: not used by the library, only
+/// timed here as what a small-state engine would cost per scene.
+class Xoshiro256 {
+ public:
+  void seed(std::uint64_t s) {
+    for (std::uint64_t& word : state_) {
+      s += 0x9e3779b97f4a7c15ULL;
+      std::uint64_t z = s;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      word = z ^ (z >> 31);
+    }
+  }
+  std::uint64_t operator()() {
+    const std::uint64_t result = rotl(state_[1] * 5, 7) * 9;
+    const std::uint64_t t = state_[1] << 17;
+    state_[2] ^= state_[0];
+    state_[3] ^= state_[1];
+    state_[1] ^= state_[2];
+    state_[0] ^= state_[3];
+    state_[2] ^= t;
+    state_[3] = rotl(state_[3], 45);
+    return result;
+  }
+
+ private:
+  static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+  std::uint64_t state_[4] = {1, 2, 3, 4};
+};
+
+/// seed(sceneSeed(kSeed, i)) and one draw per operation, for engine type @p E.
+template <class E>
+double seedAndDrawNs(const Options& options) {
+  E engine;
+  return nsPerOp(options, [&](std::uint64_t n) {
+    std::uint64_t sum = 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      engine.seed(ps::sceneSeed(kSeed, i));
+      sum += engine();
+    }
+    gSink = gSink + static_cast<double>(sum);
+  });
+}
+
+/// The building blocks of a scene's cost: seeding the engine per scene (seed() plus the first
+/// draw, which regenerates all 312 words of state), a draw from a running engine, the
+/// orientation of a placed object, and one radius query in a filled clutter scene.
+void benchBlocks(const Options& options) {
   ps::Engine engine(kSeed);
   const double seedAndDraw = nsPerOp(options, [&](std::uint64_t n) {
     std::uint64_t sum = 0;
@@ -275,13 +325,89 @@ void benchSeeding(const Options& options) {
     }
     gSink = gSink + sum;
   });
-  std::printf("\nPer-scene seeding of std::mt19937_64 (one core)\n");
+  const Eigen::Quaterniond init = Eigen::Quaterniond::Identity();
+  const double orientation = nsPerOp(options, [&](std::uint64_t n) {
+    double sum = 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const double angle = 1e-7 * static_cast<double>(i);
+      const Eigen::Quaterniond q =
+          Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())) * init;
+      sum += q.w() + q.z();
+    }
+    gSink = gSink + sum;
+  });
+
+  std::printf("\nBuilding blocks (one core)\n");
   rule();
-  std::printf("%-52s %12s\n", "operation", "ns");
+  std::printf("%-64s %12s\n", "operation", "ns");
   rule();
-  std::printf("%-52s %12.1f\n", "engine.seed(sceneSeed(seed, i)) alone", seedOnly);
-  std::printf("%-52s %12.1f\n", "engine.seed(...) + first draw (full state twist)", seedAndDraw);
-  std::printf("%-52s %12.2f\n", "one uniform01 draw from a running engine", draw);
+  std::printf("%-64s %12.1f\n", "engine.seed(sceneSeed(seed, i)) alone", seedOnly);
+  std::printf("%-64s %12.1f\n", "engine.seed(...) + first draw (regenerates 312 words)", seedAndDraw);
+  std::printf("%-64s %12.2f\n", "one uniform01 draw from a running engine", draw);
+  std::printf("%-64s %12.1f\n", "orientation: Quaterniond(AngleAxisd(angle, z)) * init", orientation);
+  Xoshiro256 small;
+  const double smallDraw = nsPerOp(options, [&](std::uint64_t n) {
+    double sum = 0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      sum += static_cast<double>(small() >> 11) * 0x1.0p-53;
+    }
+    gSink = gSink + sum;
+  });
+  std::printf("%-64s %12.1f\n", "for comparison: std::mt19937 (32 bit) seed + first draw",
+              seedAndDrawNs<std::mt19937>(options));
+  std::printf("%-64s %12.1f\n", "for comparison: xoshiro256** seed (SplitMix64) + first draw",
+              seedAndDrawNs<Xoshiro256>(options));
+  std::printf("%-64s %12.2f\n", "for comparison: xoshiro256** draw", smallDraw);
+  std::printf("\nOne radius query against a filled clutter scene (cylinders r = 0.03 m, about 110 per m^2;\n"
+              "candidates from a pool of %zu, too many for the branch predictor to learn)\n",
+              kCandidatePool);
+  rule();
+  std::printf("%-10s %14s %14s %14s %14s\n", "entries", "scan [ns]", "grid [ns]", "default [ns]",
+              "robosuite [ns]");
+  const std::string standard = "(scan <= " + std::to_string(ps::RadiusChecker::kDefaultScanLimit) + ")";
+  std::printf("%-10s %14s %14s %14s %14s\n", "", "(packed)", "", standard.c_str(), "style scan");
+  rule();
+  for (const int n : {8, 16, 24, 32, 48, 64, 128, 400}) {
+    // The region grows with N so that the density, and so the attempts, stay the same.
+    const double half = 0.3 * std::sqrt(n / 40.0);
+    const Setup setup = makeSetup(ps::parseYaml(clutterYaml(n, half), "clutter"));
+    const ps::ObjectModel* object = setup.generator->config().objects.front().get();
+    std::vector<Eigen::Vector3d> positions(kCandidatePool);
+    ps::Engine engine(kSeed);
+    for (Eigen::Vector3d& position : positions) {
+      position = Eigen::Vector3d(ps::uniform(engine, -half + 0.03, half - 0.03),
+                                 ps::uniform(engine, -half + 0.03, half - 0.03), 0.85);
+    }
+    double ns[4];
+    std::size_t entries = 0;
+    for (int k = 0; k < 4; ++k) {
+      std::unique_ptr<ps::CollisionChecker> checker;
+      if (k == 0) {
+        checker = std::make_unique<ps::RadiusChecker>(std::numeric_limits<std::size_t>::max());
+      } else if (k == 1) {
+        checker = std::make_unique<ps::RadiusChecker>(0);
+      } else if (k == 2) {
+        checker = std::make_unique<ps::RadiusChecker>();
+      } else {
+        checker = std::make_unique<ScanChecker>();
+      }
+      SceneLoop loop(setup.request, std::move(checker));
+      loop.engine().seed(kSeed);
+      loop.scene();  // as far as it goes
+      entries = loop.context().entries().size();
+      ps::Candidate candidate;
+      candidate.object = object;
+      ns[k] = nsPerOp(options, [&](std::uint64_t count) {
+        std::ptrdiff_t sum = 0;
+        for (std::uint64_t i = 0; i < count; ++i) {
+          candidate.position = positions[i % kCandidatePool];
+          sum += loop.context().firstCollision(candidate);
+        }
+        gSink = gSink + static_cast<double>(sum);
+      });
+    }
+    std::printf("%-10zu %14.1f %14.1f %14.1f %14.1f\n", entries, ns[0], ns[1], ns[2], ns[3]);
+  }
 }
 
 void benchEnvironments(const Options& options) {
@@ -298,7 +424,7 @@ void benchEnvironments(const Options& options) {
               options.repetitions);
   rule();
   std::printf("%-12s %12s %12s %12s %12s %11s %11s\n", "config", "sample[ns]", "+seed[ns]",
-              "batch1t[ns]", "scan+seed", "robosuite", "x faster");
+              "batch1t[ns]", "old+seed", "robosuite", "x faster");
   std::printf("%-12s %12s %12s %12s %12s %11s %11s\n", "", "(reused)", "(per scene)",
               "sampleScenes", "[ns]", "[us]", "(+seed)");
   rule();
@@ -318,7 +444,8 @@ void benchEnvironments(const Options& options) {
   }
   std::printf("sample: engine seeded once and reused; +seed: engine.seed(sceneSeed(seed, i)) per "
               "scene, as the service and CLI;\nbatch1t: SceneGenerator::sampleScenes with 1 "
-              "thread (results built); scan: the brute-force radius test instead of the grid.\n");
+              "thread (results built); old: robosuite's scan of every entry, unpacked\n(the "
+              "radius test before issue 5). x faster: robosuite / +seed.\n");
 }
 
 void benchClutter(const Options& options) {
@@ -327,40 +454,51 @@ void benchClutter(const Options& options) {
     double robosuiteMs;  ///< [ms/scene] from issue 5, 0 = not given
   };
   const Point points[] = {{5, 0.06}, {10, 0.19}, {20, 0.76}, {40, 5.0}, {50, 0.0}};
-  std::printf("\nClutter: N cylinders r=0.03 h=0.1 in 0.6 x 0.6 m, both flags on, one thread "
-              "(median of %d; stats over %llu seeded scenes)\n",
+  std::printf("\nClutter: N cylinders r=0.03 h=0.1 in 0.6 x 0.6 m, both flags on, one thread (median "
+              "of %d;\nattempts and failures over %llu seeded scenes)\n",
               options.repetitions, static_cast<unsigned long long>(options.statScenes));
   rule();
-  std::printf("%4s %11s %11s %11s %11s %9s %9s %9s %10s %8s\n", "N", "grid+seed", "grid", "scan+seed",
-              "scan", "att/obj", "fail", "same", "robosuite", "x faster");
-  std::printf("%4s %11s %11s %11s %11s %9s %9s %9s %10s %8s\n", "", "[ns/scene]", "[ns/scene]",
-              "[ns/scene]", "[ns/scene]", "", "rate", "result", "[ms]", "(+seed)");
+  std::printf("%3s %10s %10s %10s %10s %10s %8s %8s %5s %9s %8s\n", "N", "+seed", "sample",
+              "grid only", "scan only", "robosuite", "att/obj", "fail", "same", "robosuite",
+              "x faster");
+  std::printf("%3s %10s %10s %10s %10s %10s %8s %8s %5s %9s %8s\n", "", "[ns]", "[ns]", "[ns]",
+              "[ns]", "scan [ns]", "", "rate", "", "[ms]", "(+seed)");
   rule();
-  std::vector<double> ns, gridSeeded, gridReused, scanSeeded;
+  std::vector<double> ns, seeded, reused, attempts;
   for (const Point& point : points) {
     const Setup setup = makeSetup(ps::parseYaml(clutterYaml(point.n), "clutter"));
-    SceneLoop grid(setup.request, ps::makeCollisionChecker(ps::CollisionMode::Radius, 0.0));
-    SceneLoop scan(setup.request, std::make_unique<ScanChecker>());
-    const double gs = nsPerOp(options, [&](std::uint64_t n) { grid.runSeeded(n); });
+    SceneLoop radius(setup.request, ps::makeCollisionChecker(ps::CollisionMode::Radius, 0.0));
+    SceneLoop grid(setup.request, std::make_unique<ps::RadiusChecker>(0));
+    SceneLoop scan(setup.request,
+                   std::make_unique<ps::RadiusChecker>(std::numeric_limits<std::size_t>::max()));
+    SceneLoop old(setup.request, std::make_unique<ScanChecker>());
+    const double rs = nsPerOp(options, [&](std::uint64_t n) { radius.runSeeded(n); });
+    const double rr = nsPerOp(options, [&](std::uint64_t n) { radius.runReused(n); });
     const double gr = nsPerOp(options, [&](std::uint64_t n) { grid.runReused(n); });
-    const double ss = nsPerOp(options, [&](std::uint64_t n) { scan.runSeeded(n); });
     const double sr = nsPerOp(options, [&](std::uint64_t n) { scan.runReused(n); });
-    const SceneStats a = collectStats(grid, options.statScenes);
-    const SceneStats b = collectStats(scan, options.statScenes);
-    const bool same = a.attempts == b.attempts && a.failed == b.failed && a.checksum == b.checksum;
-    std::printf("%4d %11.0f %11.0f %11.0f %11.0f %9.2f %9.4f %9s %10s %8s\n", point.n, gs, gr, ss, sr,
-                a.attemptsPerObject(), a.failureRate(), same ? "yes" : "NO",
+    const double orr = nsPerOp(options, [&](std::uint64_t n) { old.runReused(n); });
+    const SceneStats a = collectStats(radius, options.statScenes);
+    bool same = true;
+    for (SceneLoop* other : {&grid, &scan, &old}) {
+      const SceneStats b = collectStats(*other, options.statScenes);
+      same = same && a.attempts == b.attempts && a.failed == b.failed && a.checksum == b.checksum;
+    }
+    std::printf("%3d %10.0f %10.0f %10.0f %10.0f %10.0f %8.2f %8.4f %5s %9s %8s\n", point.n, rs, rr,
+                gr, sr, orr, a.attemptsPerObject(), a.failureRate(), same ? "yes" : "NO",
                 point.robosuiteMs > 0 ? fmt("%.2f", point.robosuiteMs).c_str() : "-",
-                point.robosuiteMs > 0 ? fmt("%.0f", point.robosuiteMs * 1e6 / gs).c_str() : "-");
+                point.robosuiteMs > 0 ? fmt("%.0f", point.robosuiteMs * 1e6 / rs).c_str() : "-");
     ns.push_back(point.n);
-    gridSeeded.push_back(gs);
-    gridReused.push_back(gr);
-    scanSeeded.push_back(ss);
+    seeded.push_back(rs);
+    reused.push_back(rr);
+    attempts.push_back(a.attemptsPerObject() * point.n);
   }
-  std::printf("same result: grid and scan give the same attempts, failures and placements.\n");
-  std::printf("scaling exponent (log-log least squares, N = 5..50): grid+seed %.2f, grid %.2f, "
-              "scan+seed %.2f (robosuite ~2.1)\n",
-              logLogSlope(ns, gridSeeded), logLogSlope(ns, gridReused), logLogSlope(ns, scanSeeded));
+  std::printf("+seed: the default RadiusChecker with engine.seed(sceneSeed(seed, i)) per scene; "
+              "sample: the same, engine\nreused; grid only / scan only: RadiusChecker(0) / "
+              "RadiusChecker(max); robosuite scan: every entry, unpacked.\nsame: all four give the "
+              "same attempts, failures and placements.\n");
+  std::printf("log-log slope over N = 5..50: time per scene %.2f with seeding, %.2f without; "
+              "attempts per scene %.2f\n(robosuite's time: about 2.1)\n",
+              logLogSlope(ns, seeded), logLogSlope(ns, reused), logLogSlope(ns, attempts));
 }
 
 void benchFcl(const Options& options) {
@@ -400,37 +538,40 @@ void benchFcl(const Options& options) {
 void benchBatch(const Options& options) {
   const Setup setup = makeSetup(ps::loadYamlFile(options.configDir + "/pick_place.yaml"));
   const std::uint64_t k = options.batchScenes;
-  std::printf("\nBatch: K = %llu PickPlace scenes through SceneGenerator::sampleScenes (median of "
-              "%d; hardware_concurrency %u)\n",
-              static_cast<unsigned long long>(k), options.repetitions,
-              std::thread::hardware_concurrency());
-  rule();
-  std::printf("%8s %14s %14s %10s\n", "threads", "batch[ms]", "ns/scene", "speed-up");
-  rule();
-  double one = 0.0;
-  for (unsigned threads : {1u, 2u}) {
-    std::vector<double> samples;
-    for (int r = 0; r < options.repetitions + 2; ++r) {  // the first two warm up
+  // 1 and 2 threads alternate, so that other load on the machine hits both alike.
+  const int repetitions = 2 * options.repetitions + 1;
+  std::vector<double> samples[2];
+  for (int r = 0; r < repetitions + 1; ++r) {  // the first round warms up
+    for (unsigned threads : {1u, 2u}) {
       const Clock::time_point start = Clock::now();
       const auto results = setup.generator->sampleScenes(setup.request, kSeed, k, threads);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
       gSink = gSink + results.back().placements.front().position.x();
-      if (r >= 2) {
-        samples.push_back(ms);
+      if (r > 0) {
+        samples[threads - 1].push_back(ms);
       }
     }
-    const double ms = median(samples);
-    if (threads == 1) {
-      one = ms;
-    }
-    std::printf("%8u %14.2f %14.1f %10.2f\n", threads, ms, ms * 1e6 / static_cast<double>(k),
-                one / ms);
+  }
+  std::printf("\nBatch: K = %llu PickPlace scenes through SceneGenerator::sampleScenes "
+              "(%d runs each, alternating; hardware_concurrency %u)\n",
+              static_cast<unsigned long long>(k), repetitions, std::thread::hardware_concurrency());
+  rule();
+  std::printf("%8s %16s %16s %16s %12s %12s\n", "threads", "median [ms]", "fastest [ms]",
+              "median ns/scene", "speed-up", "(fastest)");
+  rule();
+  const double median1 = median(samples[0]);
+  const double fastest1 = *std::min_element(samples[0].begin(), samples[0].end());
+  for (unsigned threads : {1u, 2u}) {
+    const double m = median(samples[threads - 1]);
+    const double f = *std::min_element(samples[threads - 1].begin(), samples[threads - 1].end());
+    std::printf("%8u %16.2f %16.2f %16.1f %12.2f %12.2f\n", threads, m, f,
+                m * 1e6 / static_cast<double>(k), median1 / m, fastest1 / f);
   }
 }
 
 int usage(const char* self) {
   std::fprintf(stderr,
-               "usage: %s [--config-dir DIR] [--quick] [--only envs|seed|clutter|fcl|batch]\n"
+               "usage: %s [--config-dir DIR] [--quick] [--only envs|blocks|clutter|fcl|batch]\n"
                "Times the samplers on fixed configurations and seeds and prints tables.\n"
                "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
                "(default: %s). --quick: fewer, shorter repetitions.\n",
@@ -453,6 +594,10 @@ int main(int argc, char** argv) {
       options.statScenes = 500;
     } else if (arg == "--only" && i + 1 < argc) {
       only = argv[++i];
+      if (only != "envs" && only != "blocks" && only != "clutter" && only != "fcl" &&
+          only != "batch") {
+        return usage(argv[0]);
+      }
     } else {
       return usage(argv[0]);
     }
@@ -463,8 +608,8 @@ int main(int argc, char** argv) {
     if (only.empty() || only == "envs") {
       benchEnvironments(options);
     }
-    if (only.empty() || only == "seed") {
-      benchSeeding(options);
+    if (only.empty() || only == "blocks") {
+      benchBlocks(options);
     }
     if (only.empty() || only == "clutter") {
       benchClutter(options);
