@@ -15,6 +15,33 @@ namespace ros_interface {
 PlacementServer::PlacementServer(const ros::NodeHandle& privateHandle)
     : privateHandle_(privateHandle) {}
 
+PlacementServer::~PlacementServer() {
+  {
+    std::lock_guard<std::mutex> lock(pendingMutex_);
+    stopping_ = true;
+  }
+  pendingReady_.notify_one();
+  if (publisher_.joinable()) {
+    publisher_.join();
+  }
+}
+
+void PlacementServer::publishLoop() {
+  for (;;) {
+    PendingScene next;
+    {
+      std::unique_lock<std::mutex> lock(pendingMutex_);
+      pendingReady_.wait(lock, [this] { return stopping_ || pending_.has_value(); });
+      if (stopping_) {
+        return;
+      }
+      next = std::move(*pending_);
+      pending_.reset();
+    }
+    publish(next);
+  }
+}
+
 namespace {
 
 /// The configuration in the parameters; urdf_param objects read their URDF from the parameter
@@ -44,6 +71,7 @@ void PlacementServer::start() {
     generator_ = generator;
   }
   advertise();
+  publisher_ = std::thread(&PlacementServer::publishLoop, this);
   ROS_INFO_STREAM("placement_server: " << generator->config().objects.size() << " objects, "
                                        << generator->config().fixtures.size()
                                        << " fixtures; serving "
@@ -118,12 +146,12 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     }
     SampleRequest sampleRequest = toSampleRequest(request);
     sampleRequest.maxSeconds = config.maxRequestSeconds;
-    const PreparedRequest prepared = generator->prepare(sampleRequest);
+    PreparedRequest prepared = generator->prepare(sampleRequest);
     const std::uint64_t seed = request.seed != 0 ? request.seed : nextSeed();
     response.seed = seed;
     // Threads pay off only for large batches; the answer is the same either way.
     const unsigned threads = count >= 256 ? 0 : 1;
-    const std::vector<SceneResult> scenes = generator->sampleScenes(prepared, seed, count, threads);
+    std::vector<SceneResult> scenes = generator->sampleScenes(prepared, seed, count, threads);
 
     response.success = true;
     std::size_t failed = 0;
@@ -145,7 +173,11 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
                             " scenes failed)";
       }
     } else if (!request.dry_run) {
-      publish(*generator, prepared, scenes.front());
+      {
+        std::lock_guard<std::mutex> lock(pendingMutex_);
+        pending_ = PendingScene{generator, std::move(prepared), std::move(scenes.front())};
+      }
+      pendingReady_.notify_one();
     }
   } catch (const std::exception& e) {
     response.success = false;
@@ -155,9 +187,10 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
   return true;
 }
 
-void PlacementServer::publish(const SceneGenerator& generator, const PreparedRequest& request,
-                              const SceneResult& scene) {
-  const SceneConfig& config = generator.config();
+void PlacementServer::publish(const PendingScene& pending) {
+  const SceneConfig& config = pending.generator->config();
+  const PreparedRequest& request = pending.request;
+  const SceneResult& scene = pending.scene;
   const ros::Time now = ros::Time::now();
   std::vector<geometry_msgs::TransformStamped> frames =
       toTransforms(scene, request.fixtures, config.frameId, config.tfPrefix, now);

@@ -5,7 +5,10 @@
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include <condition_variable>
 #include <map>
+#include <optional>
+#include <thread>
 #include <memory>
 #include <mutex>
 #include <random>
@@ -27,6 +30,7 @@ class PlacementServer {
  public:
   /// @param privateHandle the node's private namespace, where the configuration lives
   explicit PlacementServer(const ros::NodeHandle& privateHandle);
+  ~PlacementServer();
 
   /// Reads and builds the configuration, then advertises the services and topics.
   /// @throw ConfigError naming the full parameter path when the configuration is invalid
@@ -47,8 +51,14 @@ class PlacementServer {
  private:
   std::shared_ptr<const SceneGenerator> generator() const;
   std::uint64_t nextSeed();
-  void publish(const SceneGenerator& generator, const PreparedRequest& request,
-               const SceneResult& scene);
+  /// A scene waiting to be broadcast by the publishing thread.
+  struct PendingScene {
+    std::shared_ptr<const SceneGenerator> generator;  // keeps the configuration alive
+    PreparedRequest request;
+    SceneResult scene;
+  };
+  void publishLoop();
+  void publish(const PendingScene& pending);
   void advertise();
   void checkMaster(const ros::WallTimerEvent&);
 
@@ -66,6 +76,13 @@ class PlacementServer {
   std::mutex publishMutex_;  // one scene's frames and markers at a time; guards the last ones
   std::map<std::string, geometry_msgs::TransformStamped> frames_;  // every frame sent, by child
   visualization_msgs::MarkerArray lastMarkers_;
+  // Broadcasting takes tens of microseconds: a thread of its own does it, off the service
+  // callback. Only the latest scene waits; an older one not yet sent is superseded.
+  std::mutex pendingMutex_;
+  std::condition_variable pendingReady_;
+  std::optional<PendingScene> pending_;
+  bool stopping_ = false;
+  std::thread publisher_;
   ros::WallTimer masterTimer_;
   bool masterUp_ = true;
 };
