@@ -257,6 +257,20 @@ TEST_F(PlacementServerTest, TimeLimitStopsAHopelessRequest) {
   ASSERT_EQ(srv.response.scenes.size(), 1u);
 }
 
+// Exact checks per request: objects resting on the table (z_offset 0.01) pass, and no two
+// placed objects' boxes/cylinders/spheres intersect (their circles may).
+TEST_F(PlacementServerTest, FclModePerRequest) {
+  for (std::uint8_t mode : {SamplePlacements::Request::CHECK_FCL,
+                            SamplePlacements::Request::CHECK_RADIUS_AND_FCL}) {
+    SamplePlacements::Request r = seeded(21, 20);
+    r.collision_check = mode;
+    r.dry_run = true;
+    const SamplePlacements srv = call(r);
+    EXPECT_TRUE(srv.response.success) << srv.response.message;
+    EXPECT_EQ(srv.response.scenes.size(), 20u);
+  }
+}
+
 TEST_F(PlacementServerTest, BadRequestsAnswerWithTheReason) {
   struct Case {
     std::string what;
@@ -269,6 +283,12 @@ TEST_F(PlacementServerTest, BadRequestsAnswerWithTheReason) {
   ok.shape.dimensions = {0.1, 0.1, 0.1};
   ok.pose.orientation.w = 1.0;
   const std::vector<Case> cases{
+      {"fixture named like a configured fixture",
+       [&](auto& r) {
+         r.fixtures = {ok};
+         r.fixtures[0].name = "far_bin";
+       },
+       "fixture 'far_bin': the name is used twice"},
       {"unknown sampler", [](auto& r) { r.sampler = "Nope"; },
        "unknown sampler 'Nope' (configured: root, PlateSampler, CupSampler, TableSampler, "
        "HideSampler)"},
@@ -387,6 +407,8 @@ TEST_F(PlacementServerTest, FramesReachATfListener) {
   }
   const auto table = buffer.lookupTransform("world", "test/table", ros::Time(0), ros::Duration(5.0));
   EXPECT_DOUBLE_EQ(table.transform.translation.z, 0.775);
+  const auto bin = buffer.lookupTransform("world", "test/far_bin", ros::Time(0), ros::Duration(5.0));
+  EXPECT_DOUBLE_EQ(bin.transform.translation.x, 5.0);
 
   // A dry run broadcasts nothing: the frames keep the last scene.
   SamplePlacements::Request dry = seeded(32);
@@ -431,7 +453,8 @@ TEST_F(PlacementServerTest, MarkersShowObjectsFixturesAndRegions) {
   }
   // plate, cup, cube, can, ball (the hidden pill is not drawn).
   EXPECT_EQ(count["objects"], 5);
-  EXPECT_EQ(count["fixtures"], 1);
+  // The table, and the five boxes of the bin read from the URDF parameter.
+  EXPECT_EQ(count["fixtures"], 6);
   EXPECT_EQ(count["regions"], 3);
 }
 
@@ -473,6 +496,50 @@ TEST_F(PlacementServerTest, ReloadAcceptsGoodAndRefusesBadConfiguration) {
   EXPECT_EQ(still.response.scenes, narrow.response.scenes);
 
   nh.setParam("/placement_server/samplers", original);
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+}
+
+// An object whose URDF comes from a parameter (the .test file loads urdf/bin.urdf into
+// /bin_description), added through a reload and used as a request fixture.
+TEST_F(PlacementServerTest, UrdfParamObject) {
+  ros::NodeHandle nh;
+  XmlRpc::XmlRpcValue objects;
+  ASSERT_TRUE(nh.getParam("/placement_server/objects", objects));
+  const XmlRpc::XmlRpcValue original = objects;
+  objects["param_bin"]["urdf_param"] = "/bin_description";
+  nh.setParam("/placement_server/objects", objects);
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+
+  SamplePlacements::Request r = seeded(17);
+  r.dry_run = true;
+  placement_samplers::Fixture bin;
+  bin.name = "crate";
+  bin.object = "param_bin";
+  bin.pose.position.x = 0.0;
+  bin.pose.position.z = 0.8;
+  bin.pose.orientation.w = 1.0;
+  r.fixtures.push_back(bin);
+  r.sampler = "TableSampler";
+  r.max_attempts = 200;
+  // The bin stands on the table's middle: under robosuite's test its circle covers most of
+  // the table, and objects are placed around it.
+  const SamplePlacements srv = call(r);
+  EXPECT_TRUE(srv.response.success) << srv.response.message;
+  for (const auto& p : srv.response.scenes[0].placements) {
+    EXPECT_GT(std::hypot(p.pose.position.x, p.pose.position.y), 0.25) << p.name;
+  }
+
+  objects["broken"]["urdf_param"] = "/no_such_description";
+  nh.setParam("/placement_server/objects", objects);
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_FALSE(trigger.response.success);
+  EXPECT_NE(trigger.response.message.find("/no_such_description"), std::string::npos)
+      << trigger.response.message;
+
+  nh.setParam("/placement_server/objects", original);
   ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
   EXPECT_TRUE(trigger.response.success) << trigger.response.message;
 }
