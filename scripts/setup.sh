@@ -32,7 +32,7 @@ ps_install() {
   if [ ${#missing[@]} -gt 0 ]; then
     echo "==> installing ${#missing[@]} Debian packages: ${missing[*]}"
     ps_sudo apt-get update -qq
-    ps_sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+    ps_sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
       "${missing[@]}" >/dev/null
   fi
   # rostest and roslaunch resolve "localhost" through /etc/hosts.
