@@ -44,6 +44,8 @@ ps_install() {
 # Debian's python first (a pyenv python lacks catkin_pkg); ROS traffic on loopback.
 ps_env() {
   export PATH="/usr/bin:$PATH"
+  # package://placement_samplers resolves to this checkout even before devel/setup.bash.
+  export ROS_PACKAGE_PATH="$PS_ROOT${ROS_PACKAGE_PATH:+:$ROS_PACKAGE_PATH}"
   export ROS_HOSTNAME=localhost
   unset ROS_IP
 }

@@ -1,5 +1,6 @@
 #include <yaml-cpp/yaml.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <regex>
@@ -53,7 +54,9 @@ void convert(const YAML::Node& in, ConfigNode& out) {
     return;
   }
   if (std::regex_match(text, real)) {
-    out.setDouble(std::stod(text));
+    // strtod, not stod: 1e999 becomes inf (refused later as "expected a finite number") and
+    // 1e-400 becomes 0, where stod would throw out_of_range.
+    out.setDouble(std::strtod(text.c_str(), nullptr));
     return;
   }
   static const std::regex nan("\\.(nan|NaN|NAN)");

@@ -45,6 +45,17 @@ std::map<std::string, placement_samplers::Placement> byName(const placement_samp
   return out;
 }
 
+// A box over the whole table top: nothing on the table can avoid it.
+placement_samplers::Fixture tableCoveringWall() {
+  placement_samplers::Fixture wall;
+  wall.name = "wall";
+  wall.shape.type = shape_msgs::SolidPrimitive::BOX;
+  wall.shape.dimensions = {2.0, 2.0, 0.5};
+  wall.pose.position.z = 0.8;
+  wall.pose.orientation.w = 1.0;
+  return wall;
+}
+
 double horizontalDistance(const geometry_msgs::Pose& a, const geometry_msgs::Pose& b) {
   return std::hypot(a.position.x - b.position.x, a.position.y - b.position.y);
 }
@@ -217,13 +228,7 @@ TEST_F(PlacementServerTest, FailureNamesObjectSamplerAndBlocker) {
   SamplePlacements::Request r = seeded(11);
   r.sampler = "TableSampler";
   r.max_attempts = 3;
-  placement_samplers::Fixture wall;
-  wall.name = "wall";
-  wall.shape.type = shape_msgs::SolidPrimitive::BOX;
-  wall.shape.dimensions = {2.0, 2.0, 0.5};
-  wall.pose.position.z = 0.8;
-  wall.pose.orientation.w = 1.0;
-  r.fixtures.push_back(wall);
+  r.fixtures.push_back(tableCoveringWall());
   const SamplePlacements srv = call(r);
   EXPECT_FALSE(srv.response.success);
   EXPECT_EQ(srv.response.message,
@@ -236,13 +241,7 @@ TEST_F(PlacementServerTest, TimeLimitStopsAHopelessRequest) {
   SamplePlacements::Request r = seeded(12);
   r.sampler = "TableSampler";
   r.max_attempts = 4000000000u;
-  placement_samplers::Fixture wall;
-  wall.name = "wall";
-  wall.shape.type = shape_msgs::SolidPrimitive::BOX;
-  wall.shape.dimensions = {2.0, 2.0, 0.5};
-  wall.pose.position.z = 0.8;
-  wall.pose.orientation.w = 1.0;
-  r.fixtures.push_back(wall);
+  r.fixtures.push_back(tableCoveringWall());
   const ros::WallTime start = ros::WallTime::now();
   const SamplePlacements srv = call(r);
   const double seconds = (ros::WallTime::now() - start).toSec();
