@@ -111,8 +111,10 @@ def main():
     rss_before = rss_kb(args.node_pid)
 
     start = time.time()
-    queue = multiprocessing.Queue()
-    procs = [multiprocessing.Process(target=client, args=(i, args.calls, reference, queue))
+    # Fresh interpreters: a forked child would inherit this process's rospy node.
+    ctx = multiprocessing.get_context("spawn")
+    queue = ctx.Queue()
+    procs = [ctx.Process(target=client, args=(i, args.calls, reference, queue))
              for i in range(args.clients)]
     for p in procs:
         p.start()
