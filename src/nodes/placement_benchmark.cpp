@@ -342,7 +342,7 @@ void benchBlocks(const Options& options) {
   std::printf("%-64s %12s\n", "operation", "ns");
   rule();
   std::printf("%-64s %12.1f\n", "engine.seed(sceneSeed(seed, i)) alone", seedOnly);
-  std::printf("%-64s %12.1f\n", "engine.seed(...) + first draw (regenerates 312 words)", seedAndDraw);
+  std::printf("%-64s %12.1f\n", "engine.seed(...) + first draw (lazy: 156 seed steps, one word)", seedAndDraw);
   std::printf("%-64s %12.2f\n", "one uniform01 draw from a running engine", draw);
   std::printf("%-64s %12.1f\n", "orientation: Quaterniond(AngleAxisd(angle, z)) * init", orientation);
   Xoshiro256 small;

@@ -1,0 +1,80 @@
+#include "placement_samplers/mt19937_64.hpp"
+
+namespace placement_samplers {
+namespace {
+
+constexpr std::size_t kN = Mt19937_64::kStateSize;
+constexpr std::size_t kM = Mt19937_64::kShiftSize;
+constexpr std::size_t kHalf = kN - kM;  // words 0 .. kHalf - 1 need only old words
+constexpr std::uint64_t kMatrixA = 0xB5026F5AA96619E9ULL;
+constexpr std::uint64_t kUpperMask = ~std::uint64_t{0} << 31;  // r = 31
+constexpr std::uint64_t kLowerMask = ~kUpperMask;
+constexpr std::uint64_t kSeedMultiplier = 6364136223846793005ULL;
+
+/// The new value of a word from the word itself, the next one and the one m ahead (mod n).
+/// Branch-free: libstdc++'s (y & 1) ? a : 0 becomes a jump that mispredicts half the time.
+inline std::uint64_t twistWord(std::uint64_t word, std::uint64_t next, std::uint64_t far) {
+  const std::uint64_t y = (word & kUpperMask) | (next & kLowerMask);
+  return far ^ (y >> 1) ^ ((std::uint64_t{0} - (y & 1)) & kMatrixA);
+}
+
+/// Words kHalf .. kN - 1 of a regeneration whose words 0 .. kHalf - 1 are done: they read the
+/// NEW words 0 .. kM - 1 (the last one the new word 0).
+void twistTail(std::uint64_t* state) {
+  for (std::size_t k = kHalf; k < kN - 1; ++k) {
+    state[k] = twistWord(state[k], state[k + 1], state[k - kHalf]);
+  }
+  state[kN - 1] = twistWord(state[kN - 1], state[0], state[kM - 1]);
+}
+
+}  // namespace
+
+void Mt19937_64::extendSeed(std::size_t last) {
+  // Serial: word j needs word j - 1. Words past index_ + kM are never overwritten before this
+  // reads them (the lazy regeneration only writes words below kHalf).
+  for (std::size_t j = seeded_; j <= last; ++j) {
+    const std::uint64_t previous = state_[j - 1];
+    state_[j] = kSeedMultiplier * (previous ^ (previous >> 62)) + j;
+  }
+  if (seeded_ <= last) {
+    seeded_ = last + 1;
+  }
+}
+
+void Mt19937_64::prepareNext() {
+  if (index_ >= kN) {
+    // A whole block was output: a full regeneration, as any MT.
+    for (std::size_t k = 0; k < kHalf; ++k) {
+      state_[k] = twistWord(state_[k], state_[k + 1], state_[k + kM]);
+    }
+    twistTail(state_);
+    index_ = 0;
+    ready_ = kN;
+  } else if (index_ < kHalf) {
+    // First block after seed(): new word index_ from old words index_, index_ + 1 and
+    // index_ + kM, which the seed chain must reach first.
+    extendSeed(index_ + kM);
+    state_[index_] = twistWord(state_[index_], state_[index_ + 1], state_[index_ + kM]);
+    ready_ = index_ + 1;
+  } else {
+    // index_ == kHalf in the first block: the chain is complete (word kHalf - 1 needed word
+    // kN - 1); finish the regeneration.
+    extendSeed(kN - 1);
+    twistTail(state_);
+    ready_ = kN;
+  }
+}
+
+void Mt19937_64::discard(unsigned long long count) {
+  while (count > 0) {
+    if (index_ >= ready_) {
+      prepareNext();
+    }
+    const std::size_t available = ready_ - index_;
+    const std::size_t skip = count < available ? static_cast<std::size_t>(count) : available;
+    index_ += skip;
+    count -= skip;
+  }
+}
+
+}  // namespace placement_samplers
