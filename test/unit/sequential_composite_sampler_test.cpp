@@ -21,6 +21,7 @@ namespace placement_samplers {
 namespace {
 
 using test::findPlacement;
+using test::configError;
 using test::makeBox;
 using test::makeCylinder;
 using test::makeSphere;
@@ -43,15 +44,6 @@ SampleArgs args(const Reference& reference, bool onTop) {
   a.reference = reference;
   a.onTop = onTop;
   return a;
-}
-
-std::string configError(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no ConfigError";
 }
 
 std::vector<std::string> names(const std::vector<ObjectPtr>& objects) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "placement_samplers/collision_checker.hpp"
 #include "placement_samplers/config_builder.hpp"
 #include "placement_samplers/config_node.hpp"
+#include "placement_samplers/errors.hpp"
 #include "placement_samplers/object_model.hpp"
 #include "placement_samplers/placement.hpp"
 #include "placement_samplers/random.hpp"
@@ -38,6 +40,16 @@ inline ObjectPtr makeSphere(const std::string& name, double radius) {
 inline ObjectPtr makeCylinder(const std::string& name, double radius, double length,
                               const Eigen::Quaterniond& init = Eigen::Quaterniond::Identity()) {
   return std::make_shared<ObjectModel>(makeObject(name, {Shape::cylinder(radius, length)}, init));
+}
+
+/// The message of the ConfigError that @p f throws, or "no ConfigError".
+inline std::string configError(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no ConfigError";
 }
 
 /// The state of one scene: an engine, robosuite's radius checker and a context over both.

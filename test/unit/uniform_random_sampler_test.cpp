@@ -18,6 +18,7 @@
 namespace placement_samplers {
 namespace {
 
+using test::configError;
 using test::makeBox;
 using test::makeCylinder;
 using test::makeSphere;
@@ -44,15 +45,6 @@ std::vector<ObjectPlacement> sampleMany(const UniformRandomSampler& sampler, int
     out.insert(out.end(), scene.context.placements().begin(), scene.context.placements().end());
   }
   return out;
-}
-
-std::string configError(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no ConfigError";
 }
 
 TEST(UniformRandomSampler, PositionsWithinShrunkRangeAroundReference) {
