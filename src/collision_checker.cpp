@@ -34,7 +34,7 @@ constexpr double kCellLimit = 4503599627370496.0;
 /// range of coordinates maps onto a range of cells and clamping never loses a neighbour.
 inline std::int64_t cellIndex(double v, double inverse) {
   const double t = std::min(kCellLimit, std::max(-kCellLimit, v * inverse));  // NaN -> -limit
-  const auto i = static_cast<std::int64_t>(t);  // rounds toward zero
+  const auto i = static_cast<std::int64_t>(t);                                // rounds toward zero
   return i - static_cast<std::int64_t>(t < static_cast<double>(i));
 }
 
@@ -105,18 +105,21 @@ struct RadiusChecker::Grid {
   /// An entry's copy in one bucket list.
   struct Node {
     Item item;
-    std::int32_t index;   ///< entry index
-    std::int32_t next;    ///< next node of the same bucket, -1 = none
+    std::int32_t index;  ///< entry index
+    std::int32_t next;   ///< next node of the same bucket, -1 = none
     std::uint32_t bucket;
   };
 
   explicit Grid(int e)
-      : exponent(e), half(std::ldexp(0.5, e)), inverse(std::ldexp(1.0, -e)),
-        ownCellLimit(std::ldexp(0.5, e) * (1.0 - 1e-6)), coordinateLimit(std::ldexp(1e6, e)) {}
+      : exponent(e),
+        half(std::ldexp(0.5, e)),
+        inverse(std::ldexp(1.0, -e)),
+        ownCellLimit(std::ldexp(0.5, e) * (1.0 - 1e-6)),
+        coordinateLimit(std::ldexp(1e6, e)) {}
 
   int exponent;
-  double half;             ///< half a cell [m]: how far an entry is listed around itself
-  double inverse;          ///< 1 / cell size [1/m]
+  double half;     ///< half a cell [m]: how far an entry is listed around itself
+  double inverse;  ///< 1 / cell size [1/m]
   /// Queries reaching at most this far [m] need only the candidate's cell. Slightly below
   /// half a cell, and only within coordinateLimit [m] of the origin, so that rounding in
   /// entry +/- half cannot lose a neighbour.
@@ -225,7 +228,8 @@ struct RadiusChecker::Grid {
     const std::int64_t x1 = cellIndex(p.x + far, inverse);
     const std::int64_t y0 = cellIndex(p.y - far, inverse);
     const std::int64_t y1 = cellIndex(p.y + far, inverse);
-    const double cells = (static_cast<double>(x1 - x0) + 1.0) * (static_cast<double>(y1 - y0) + 1.0);
+    const double cells =
+        (static_cast<double>(x1 - x0) + 1.0) * (static_cast<double>(y1 - y0) + 1.0);
     if (cells > static_cast<double>(members.size())) {
       return scan(items, p, best);  // a candidate much larger than the members (a table)
     }

@@ -49,7 +49,8 @@ class Builder {
       if (const ConfigNode* q = f.get("orientation")) {
         fixture.orientation = parseQuaternion(*q);
       }
-      fixture.object = std::make_shared<ObjectModel>(reorientedObject(*object, fixture.orientation));
+      fixture.object =
+          std::make_shared<ObjectModel>(reorientedObject(*object, fixture.orientation));
       available_.insert(fixture.name);
       config_.fixtures.push_back(std::move(fixture));
     }
@@ -192,7 +193,8 @@ class Builder {
       p.zOffset = n->asDouble();
     }
     if (const ConfigNode* n = s.get("max_attempts")) {
-      p.maxAttempts = static_cast<std::uint32_t>(n->asInt(1, std::numeric_limits<std::uint32_t>::max()));
+      p.maxAttempts =
+          static_cast<std::uint32_t>(n->asInt(1, std::numeric_limits<std::uint32_t>::max()));
     }
     // A named reference must exist before this sampler runs: a fixture or an earlier object.
     if (reference && reference->kind == Reference::Kind::Name &&
@@ -244,9 +246,9 @@ class Builder {
 
   SceneConfig& config_;
   const BuildOptions& options_;
-  MeshLoader meshes_;                  // each mesh file read once per build
-  std::set<std::string> available_;    // fixtures and objects placed so far, in sampling order
-  std::set<std::string> assigned_;     // objects that have a sampler
+  MeshLoader meshes_;                // each mesh file read once per build
+  std::set<std::string> available_;  // fixtures and objects placed so far, in sampling order
+  std::set<std::string> assigned_;   // objects that have a sampler
   std::set<std::string> samplerNames_;
   std::vector<const ConfigNode*> referenceNodes_;
 };

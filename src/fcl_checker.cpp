@@ -40,8 +40,8 @@ class Body : public fcl::CollisionObjectd {
     t = pose;
     const fcl::AABBd& local = cgeom->aabb_local;
     const Eigen::Vector3d centre = pose * local.center();
-    const Eigen::Vector3d half =
-        pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) + Eigen::Vector3d::Constant(grow);
+    const Eigen::Vector3d half = pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) +
+                                 Eigen::Vector3d::Constant(grow);
     aabb.min_ = centre - half;
     aabb.max_ = centre + half;
   }
@@ -70,7 +70,8 @@ class MeshGeometryCache {
     }
     if (model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size())) !=
             fcl::BVH_OK ||
-        model->addSubModel(vertices, triangles) != fcl::BVH_OK || model->endModel() != fcl::BVH_OK) {
+        model->addSubModel(vertices, triangles) != fcl::BVH_OK ||
+        model->endModel() != fcl::BVH_OK) {
       throw std::runtime_error("FCL could not build a BVH for mesh '" + mesh->source + "'");
     }
     model->computeLocalAABB();

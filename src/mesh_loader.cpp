@@ -22,9 +22,7 @@ namespace {
 constexpr const char* kPackageScheme = "package://";
 constexpr const char* kFileScheme = "file://";
 
-bool startsWith(const std::string& s, const char* prefix) {
-  return s.rfind(prefix, 0) == 0;
-}
+bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
 /// The <name> of a package.xml, or "" when it cannot be read.
 std::string packageName(const fs::path& packageXml) {
@@ -176,7 +174,8 @@ std::string resolveUri(const std::string& uri, const PackageResolver& resolver,
   return p.lexically_normal().string();
 }
 
-Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale, const std::string& source) {
+Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale,
+                  const std::string& source) {
   const std::string where = "mesh '" + source + "'" + (path != source ? " (" + path + ")" : "");
   if (!scale.allFinite() || (scale.array() <= 0.0).any()) {
     throw ConfigError(where + ": scale must be three finite positive factors, got " +
@@ -200,14 +199,16 @@ Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale, const s
   Assimp::Importer importer;
   // rviz and the ROS tools keep a mesh's z axis up, whatever COLLADA's up_axis says.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   // Normals dropped so that STL's per-facet copies of a vertex merge into one.
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_DropNormals |
                                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     std::string why = importer.GetErrorString();
-    throw ConfigError(where + ": cannot read it as a mesh: " + (why.empty() ? "unknown error" : why));
+    throw ConfigError(where +
+                      ": cannot read it as a mesh: " + (why.empty() ? "unknown error" : why));
   }
   Mesh mesh;
   mesh.source = source;

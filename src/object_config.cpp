@@ -107,8 +107,8 @@ Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader
     return parseMesh(name, node, meshes);
   }
   if (type == "box") {
-    node.checkKeys({"shape", "size", "horizontal_radius", "bottom_offset", "top_offset",
-                    "init_orientation"});
+    node.checkKeys(
+        {"shape", "size", "horizontal_radius", "bottom_offset", "top_offset", "init_orientation"});
     const ConfigNode& size = node.at("size");
     const Eigen::Vector3d s = size.asVector3();
     if ((s.array() <= 0.0).any()) {
@@ -120,8 +120,8 @@ Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader
     return Shape::box(s);
   }
   if (type == "cylinder" || type == "capsule") {
-    node.checkKeys({"shape", "radius", "length", "horizontal_radius", "bottom_offset",
-                    "top_offset", "init_orientation"});
+    node.checkKeys({"shape", "radius", "length", "horizontal_radius", "bottom_offset", "top_offset",
+                    "init_orientation"});
     const double radius = positive(node.at("radius"));
     const double length = positive(node.at("length"));
     return type == "cylinder" ? Shape::cylinder(radius, length) : Shape::capsule(radius, length);
@@ -193,7 +193,9 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
     shapes = parseUrdf(name, node, options, meshes);
   } else {
     if (node.get("shape") == nullptr) {
-      node.fail("missing required key 'shape' (box, cylinder, sphere, capsule or mesh), or urdf_file or urdf_param");
+      node.fail(
+          "missing required key 'shape' (box, cylinder, sphere, capsule or mesh), or urdf_file or "
+          "urdf_param");
     }
     shapes.push_back(parsePrimitive(name, node, meshes));
   }

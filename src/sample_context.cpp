@@ -22,8 +22,8 @@ void SampleContext::addFixture(const std::string& name, const ObjectModel* objec
 }
 
 void SampleContext::addPlacement(ObjectPlacement placement) {
-  entries_.push_back(
-      PlacedEntry{placement.name, placement.object, placement.position, placement.orientation, false});
+  entries_.push_back(PlacedEntry{placement.name, placement.object, placement.position,
+                                 placement.orientation, false});
   checker_.added(entries_, entries_.size() - 1);
   placements_.push_back(std::move(placement));
 }

@@ -64,7 +64,8 @@ struct Walker {
 
 }  // namespace
 
-std::vector<SamplerRegion> samplerRegions(const PreparedRequest& request, const SceneResult& scene) {
+std::vector<SamplerRegion> samplerRegions(const PreparedRequest& request,
+                                          const SceneResult& scene) {
   Walker walker{request, scene, {}};
   if (request.sampler != nullptr) {
     walker.visit(*request.sampler, request.reference, request.onTop);

@@ -188,7 +188,8 @@ std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& req
   if (threads == 0) {
     threads = std::max(1u, std::thread::hardware_concurrency());
   }
-  threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(count, 1)));
+  threads =
+      static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(count, 1)));
   std::atomic<std::uint64_t> next{0};
   const auto deadline = deadlineOf(request);
   auto work = [&] {

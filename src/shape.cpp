@@ -10,7 +10,8 @@ namespace {
 /// Largest |c + cos(t) u + sin(t) v| over t: the farthest point of an ellipse from the origin in
 /// the plane. Dense scan, then a golden-section refinement around the best sample; the function
 /// of t has at most two maxima, so the refined value is exact to rounding.
-double ellipseMaxNorm(const Eigen::Vector2d& c, const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+double ellipseMaxNorm(const Eigen::Vector2d& c, const Eigen::Vector2d& u,
+                      const Eigen::Vector2d& v) {
   auto norm = [&](double t) { return (c + std::cos(t) * u + std::sin(t) * v).norm(); };
   constexpr int kSamples = 256;
   constexpr double kStep = 2.0 * M_PI / kSamples;
@@ -70,8 +71,8 @@ Bounds cylinderBounds(double radius, double halfLength, const Eigen::Isometry3d&
   // The farthest point lies on one of the two rim circles (the norm is convex along the axis).
   for (double s : {-1.0, 1.0}) {
     const Eigen::Vector3d c = centre + s * halfLength * axis;
-    horizontal = std::max(horizontal, ellipseMaxNorm(c.head<2>(), radius * e1.head<2>(),
-                                                     radius * e2.head<2>()));
+    horizontal = std::max(
+        horizontal, ellipseMaxNorm(c.head<2>(), radius * e1.head<2>(), radius * e2.head<2>()));
   }
   return Bounds{centre.z() - zSpan, centre.z() + zSpan, horizontal};
 }

@@ -95,8 +95,9 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
         const char* key = axis == 0 ? "x_range" : "y_range";
         std::ostringstream out;
         out << "sampler '" << name() << "': " << key << " "
-            << rangeText(axis == 0 ? params_.xRange : params_.yRange) << " leaves no room for object '"
-            << object->name << "' (horizontal radius " << object->horizontalRadius
+            << rangeText(axis == 0 ? params_.xRange : params_.yRange)
+            << " leaves no room for object '" << object->name << "' (horizontal radius "
+            << object->horizontalRadius
             << " m) with ensure_object_boundary_in_range on: the range must be at least "
             << 2.0 * object->horizontalRadius << " m wide";
         throw ConfigError(out.str());
@@ -165,7 +166,8 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
                                     const Eigen::Vector3d& base, bool onTop) const {
   const ObjectModel& object = *entry.object;
   Engine& engine = context.engine();
-  const std::uint32_t limit = context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  const std::uint32_t limit =
+      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
   const bool check = params_.ensureValidPlacement;
   const bool orientFirst = check && context.needsOrientation();
   std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
@@ -216,8 +218,9 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
     const std::size_t index = static_cast<std::size_t>(most - counts->begin());
     failure.blocker = context.entries()[index].name;
     failure.blockerCount = *most;
-    out << ": " << *most << " of them overlapped " << (context.entries()[index].fixture ? "fixture" : "object")
-        << " '" << failure.blocker << "'";
+    out << ": " << *most << " of them overlapped "
+        << (context.entries()[index].fixture ? "fixture" : "object") << " '" << failure.blocker
+        << "'";
     std::size_t others = 0;
     for (std::size_t i = 0; i < counts->size(); ++i) {
       others += (i != index && (*counts)[i] > 0) ? 1 : 0;

@@ -97,8 +97,9 @@ class ShapeCollector {
   void addLink(const urdf::Link& link, const Eigen::Isometry3d& linkPose) {
     const std::vector<urdf::CollisionSharedPtr> collisions = collisionsOf(link);
     for (std::size_t i = 0; i < collisions.size(); ++i) {
-      const std::string where = "link '" + link.name + "', collision " + std::to_string(i) +
-                                (collisions[i]->name.empty() ? "" : " '" + collisions[i]->name + "'");
+      const std::string where =
+          "link '" + link.name + "', collision " + std::to_string(i) +
+          (collisions[i]->name.empty() ? "" : " '" + collisions[i]->name + "'");
       if (!collisions[i]->geometry) {
         throw ConfigError(where + ": no geometry");
       }

@@ -96,8 +96,8 @@ class RadiusChecker : public CollisionChecker {
   std::vector<Item> items_;              ///< one per entry, by entry index
   std::vector<std::int32_t> unbounded_;  ///< entries no cell can hold, ascending
   std::vector<std::unique_ptr<Grid>> grids_;  ///< every grid ever used, kept for their buffers
-  std::vector<Grid*> active_;            ///< grids holding entries of the current scene
-  Grid* lastGrid_ = nullptr;             ///< the grid of the latest entry
+  std::vector<Grid*> active_;                 ///< grids holding entries of the current scene
+  Grid* lastGrid_ = nullptr;                  ///< the grid of the latest entry
 };
 
 /// True when robosuite's test says @p candidate overlaps @p other.

@@ -50,7 +50,7 @@ class ConfigNode {
   /// @throw ConfigError when it is missing
   const ConfigNode& at(const std::string& key) const;
   const std::vector<std::pair<std::string, ConfigNode>>& entries() const;  ///< map
-  const std::vector<ConfigNode>& elements() const;                        ///< list
+  const std::vector<ConfigNode>& elements() const;                         ///< list
   bool asBool() const;
   /// A finite number; an integer is accepted.
   double asDouble() const;

@@ -58,7 +58,8 @@ class FclChecker : public CollisionChecker {
 class CombinedChecker : public CollisionChecker {
  public:
   /// @throw std::invalid_argument when either checker is null
-  CombinedChecker(std::unique_ptr<CollisionChecker> first, std::unique_ptr<CollisionChecker> second);
+  CombinedChecker(std::unique_ptr<CollisionChecker> first,
+                  std::unique_ptr<CollisionChecker> second);
 
   void clear() override;
   void added(const std::vector<PlacedEntry>& entries, std::size_t index) override;

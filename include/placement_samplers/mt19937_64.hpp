@@ -21,9 +21,9 @@ class Mt19937_64 {
  public:
   using result_type = std::uint64_t;
 
-  static constexpr std::size_t kStateSize = 312;       ///< n
-  static constexpr std::size_t kShiftSize = 156;       ///< m
-  static constexpr result_type kDefaultSeed = 5489u;   ///< std::mt19937_64::default_seed
+  static constexpr std::size_t kStateSize = 312;      ///< n
+  static constexpr std::size_t kShiftSize = 156;      ///< m
+  static constexpr result_type kDefaultSeed = 5489u;  ///< std::mt19937_64::default_seed
 
   /// Seeded with kDefaultSeed, as a default-constructed std::mt19937_64.
   Mt19937_64() { seed(kDefaultSeed); }
@@ -70,9 +70,9 @@ class Mt19937_64 {
   void extendSeed(std::size_t last);
 
   result_type state_[kStateSize] = {};  // zeroed once here, never by seed()
-  std::size_t seeded_ = 0;  ///< words 0 .. seeded_ - 1 of the seed chain are computed
-  std::size_t index_ = 0;   ///< next word to output
-  std::size_t ready_ = 0;   ///< words 0 .. ready_ - 1 are regenerated (can be output)
+  std::size_t seeded_ = 0;              ///< words 0 .. seeded_ - 1 of the seed chain are computed
+  std::size_t index_ = 0;               ///< next word to output
+  std::size_t ready_ = 0;               ///< words 0 .. ready_ - 1 are regenerated (can be output)
 };
 
 }  // namespace placement_samplers

@@ -11,11 +11,11 @@ namespace placement_samplers {
 
 /// One sampled object pose.
 struct ObjectPlacement {
-  std::string name;     ///< object name
-  std::string sampler;  ///< the uniform sampler that placed it
+  std::string name;                                    ///< object name
+  std::string sampler;                                 ///< the uniform sampler that placed it
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< object origin [m]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  std::uint32_t attempts = 0;       ///< samples drawn, the accepted one included
+  std::uint32_t attempts = 0;           ///< samples drawn, the accepted one included
   const ObjectModel* object = nullptr;  ///< geometry (owned by the configuration)
   bool hidden = false;                  ///< placed by hide(): far away, not to be drawn
 };
@@ -27,7 +27,7 @@ struct Failure {
   std::uint32_t attempts = 0;  ///< samples drawn for that object
   std::string blocker;         ///< the object or fixture that most often rejected it ("" when none)
   std::uint32_t blockerCount = 0;  ///< rejections by it
-  std::string message;         ///< the full sentence
+  std::string message;             ///< the full sentence
 };
 
 /// The outcome of one scene.
@@ -35,7 +35,7 @@ struct SceneResult {
   std::uint64_t seed = 0;   ///< the request seed
   std::uint64_t index = 0;  ///< the scene index within the request
   bool success = false;
-  std::string message;                ///< empty on success
+  std::string message;                      ///< empty on success
   std::vector<ObjectPlacement> placements;  ///< new placements in sampling order (no fixtures)
 };
 

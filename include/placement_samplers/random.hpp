@@ -16,9 +16,7 @@ using Engine = Mt19937_64;
 
 /// A double in [0, 1) from the top 53 bits of one draw. Written out rather than taken from
 /// std::uniform_real_distribution so that a seed gives the same scene with any standard library.
-inline double uniform01(Engine& engine) {
-  return static_cast<double>(engine() >> 11) * 0x1.0p-53;
-}
+inline double uniform01(Engine& engine) { return static_cast<double>(engine() >> 11) * 0x1.0p-53; }
 
 /// A double in [low, high) (exactly low when low == high), from one draw.
 inline double uniform(Engine& engine, double low, double high) {

@@ -12,8 +12,9 @@ namespace placement_samplers {
 /// Where a uniform sampler drew its x-y positions in one scene, for display.
 struct SamplerRegion {
   std::string sampler;
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< centre of the range, at base z + z_offset [m]
-  Eigen::Vector2d size = Eigen::Vector2d::Zero();    ///< extents of x_range and y_range [m]
+  Eigen::Vector3d centre =
+      Eigen::Vector3d::Zero();  ///< centre of the range, at base z + z_offset [m]
+  Eigen::Vector2d size = Eigen::Vector2d::Zero();  ///< extents of x_range and y_range [m]
 };
 
 /// The regions of every uniform sampler that @p request ran in @p scene (hidden ones left out),

@@ -24,15 +24,15 @@ struct FixtureSpec {
 /// A validated, immutable configuration: what the builder produces from one schema, for the CLI
 /// and the node alike.
 struct SceneConfig {
-  std::string frameId = "world";       ///< parent frame of every pose
-  std::string tfPrefix = "placement/"; ///< child frame of object NAME is tfPrefix + NAME
-  std::uint64_t seed = 0;              ///< 0 = a fresh seed from std::random_device
+  std::string frameId = "world";        ///< parent frame of every pose
+  std::string tfPrefix = "placement/";  ///< child frame of object NAME is tfPrefix + NAME
+  std::uint64_t seed = 0;               ///< 0 = a fresh seed from std::random_device
   CollisionMode collisionCheck = CollisionMode::Radius;
-  double collisionMargin = 0.0;        ///< clearance in the exact modes [m]
-  std::uint32_t maxAttempts = 5000;    ///< default samples per object
-  std::vector<ObjectPtr> objects;      ///< every configured object, in configuration order
-  std::vector<FixtureSpec> fixtures;   ///< configured fixtures
-  std::vector<std::string> hidden;     ///< objects placed far away by hide()
+  double collisionMargin = 0.0;       ///< clearance in the exact modes [m]
+  std::uint32_t maxAttempts = 5000;   ///< default samples per object
+  std::vector<ObjectPtr> objects;     ///< every configured object, in configuration order
+  std::vector<FixtureSpec> fixtures;  ///< configured fixtures
+  std::vector<std::string> hidden;    ///< objects placed far away by hide()
   std::shared_ptr<SequentialCompositeSampler> root;  ///< the root composite, named "root"
 
   // Settings of the node's service (the CLI has flags of its own).

@@ -24,13 +24,13 @@ struct RequestFixture {
 
 /// What varies per call. Empty members take the configured values.
 struct SampleRequest {
-  std::string sampler;               ///< "" = the root composite; else any sampler by name
+  std::string sampler;  ///< "" = the root composite; else any sampler by name
   std::vector<RequestFixture> fixtures;
-  Reference reference;               ///< Default = as configured
-  std::optional<bool> onTop;         ///< unset = true, as robosuite
+  Reference reference;        ///< Default = as configured
+  std::optional<bool> onTop;  ///< unset = true, as robosuite
   std::optional<CollisionMode> collisionCheck;
-  std::uint32_t maxAttempts = 0;     ///< 0 = as configured
-  double maxSeconds = 0.0;           ///< time limit of the whole request [s]; 0 = none
+  std::uint32_t maxAttempts = 0;  ///< 0 = as configured
+  double maxSeconds = 0.0;        ///< time limit of the whole request [s]; 0 = none
 };
 
 /// A request checked against the configuration, ready to sample any number of scenes.

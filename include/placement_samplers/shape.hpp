@@ -24,9 +24,9 @@ const char* shapeTypeName(ShapeType type);
 struct Shape {
   ShapeType type = ShapeType::Box;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box: full extents [m]
-  double radius = 0.0;                              ///< cylinder, sphere, capsule [m]
+  double radius = 0.0;                             ///< cylinder, sphere, capsule [m]
   double length = 0.0;  ///< cylinder: full length; capsule: distance between cap centres [m]
-  std::shared_ptr<const Mesh> mesh;                 ///< mesh only
+  std::shared_ptr<const Mesh> mesh;                        ///< mesh only
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< in the object frame
 
   static Shape box(const Eigen::Vector3d& size);

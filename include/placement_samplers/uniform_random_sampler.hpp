@@ -27,7 +27,7 @@ struct UniformSamplerParams {
   Eigen::Vector2d xRange = Eigen::Vector2d::Zero();  ///< [min, max] around the reference [m]
   Eigen::Vector2d yRange = Eigen::Vector2d::Zero();  ///< [min, max] around the reference [m]
   RotationSpec rotation;
-  int rotationAxis = 2;  ///< 0 = x, 1 = y, 2 = z (world axes)
+  int rotationAxis = 2;                     ///< 0 = x, 1 = y, 2 = z (world axes)
   bool ensureObjectBoundaryInRange = true;  ///< shrink the ranges by each horizontal radius
   bool ensureValidPlacement = true;         ///< run the collision test
   Eigen::Vector3d referencePos = Eigen::Vector3d::Zero();  ///< [m]

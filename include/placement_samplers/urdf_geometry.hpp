@@ -26,7 +26,8 @@ namespace placement_samplers {
 ///        no collision geometry, a missing, unreadable or empty mesh, non-finite or non-positive
 ///        sizes or scales, naming the link and the collision element
 std::vector<Shape> urdfCollisionShapes(const std::string& urdfXml, const std::string& link,
-                                       MeshLoader& meshes, const std::string& meshBaseDirectory = "");
+                                       MeshLoader& meshes,
+                                       const std::string& meshBaseDirectory = "");
 
 /// Reads a whole text file (a URDF).
 /// @throw ConfigError when it does not exist or cannot be read

@@ -41,8 +41,8 @@ constexpr std::size_t kCandidatePool = 1 << 16;
 /// Options of one run.
 struct Options {
   std::string configDir = PLACEMENT_SAMPLERS_CONFIG_DIR;
-  int repetitions = 5;          ///< timed repetitions per figure; the median is printed
-  double secondsPerRep = 0.1;   ///< [s] target length of one repetition
+  int repetitions = 5;         ///< timed repetitions per figure; the median is printed
+  double secondsPerRep = 0.1;  ///< [s] target length of one repetition
   std::uint64_t batchScenes = 10000;
   std::uint64_t statScenes = 2000;  ///< scenes behind attempts per object and failure rate
 };
@@ -216,8 +216,8 @@ std::string clutterYaml(int n, double half = 0.3) {
   for (int i = 0; i < n; ++i) {
     y << (i ? ", " : "") << "cyl" << i;
   }
-  y << "]\n    x_range: [" << -half << ", " << half << "]\n    y_range: [" << -half << ", "
-    << half << "]\n"
+  y << "]\n    x_range: [" << -half << ", " << half << "]\n    y_range: [" << -half << ", " << half
+    << "]\n"
        "    rotation_axis: z\n    ensure_object_boundary_in_range: true\n"
        "    ensure_valid_placement: true\n    reference_pos: [0.0, 0.0, 0.8]\n    z_offset: 0.0\n";
   return y.str();
@@ -342,9 +342,11 @@ void benchBlocks(const Options& options) {
   std::printf("%-64s %12s\n", "operation", "ns");
   rule();
   std::printf("%-64s %12.1f\n", "engine.seed(sceneSeed(seed, i)) alone", seedOnly);
-  std::printf("%-64s %12.1f\n", "engine.seed(...) + first draw (lazy: 156 seed steps, one word)", seedAndDraw);
+  std::printf("%-64s %12.1f\n", "engine.seed(...) + first draw (lazy: 156 seed steps, one word)",
+              seedAndDraw);
   std::printf("%-64s %12.2f\n", "one uniform01 draw from a running engine", draw);
-  std::printf("%-64s %12.1f\n", "orientation: Quaterniond(AngleAxisd(angle, z)) * init", orientation);
+  std::printf("%-64s %12.1f\n", "orientation: Quaterniond(AngleAxisd(angle, z)) * init",
+              orientation);
   Xoshiro256 small;
   const double smallDraw = nsPerOp(options, [&](std::uint64_t n) {
     double sum = 0;
@@ -358,13 +360,16 @@ void benchBlocks(const Options& options) {
   std::printf("%-64s %12.1f\n", "for comparison: xoshiro256** seed (SplitMix64) + first draw",
               seedAndDrawNs<Xoshiro256>(options));
   std::printf("%-64s %12.2f\n", "for comparison: xoshiro256** draw", smallDraw);
-  std::printf("\nOne radius query against a filled clutter scene (cylinders r = 0.03 m, about 110 per m^2;\n"
-              "candidates from a pool of %zu, too many for the branch predictor to learn)\n",
-              kCandidatePool);
+  std::printf(
+      "\nOne radius query against a filled clutter scene (cylinders r = 0.03 m, about 110 per "
+      "m^2;\n"
+      "candidates from a pool of %zu, too many for the branch predictor to learn)\n",
+      kCandidatePool);
   rule();
   std::printf("%-10s %14s %14s %14s %14s\n", "entries", "scan [ns]", "grid [ns]", "default [ns]",
               "robosuite [ns]");
-  const std::string standard = "(scan <= " + std::to_string(ps::RadiusChecker::kDefaultScanLimit) + ")";
+  const std::string standard =
+      "(scan <= " + std::to_string(ps::RadiusChecker::kDefaultScanLimit) + ")";
   std::printf("%-10s %14s %14s %14s %14s\n", "", "(packed)", "", standard.c_str(), "style scan");
   rule();
   for (const int n : {8, 16, 24, 32, 48, 64, 128, 400}) {
@@ -442,10 +447,11 @@ void benchEnvironments(const Options& options) {
     std::printf("%-12s %12.1f %12.1f %12.1f %12.1f %11.1f %11.0f\n", env.name, reused, seeded,
                 batch, scanSeeded, env.robosuiteUs, env.robosuiteUs * 1000.0 / seeded);
   }
-  std::printf("sample: engine seeded once and reused; +seed: engine.seed(sceneSeed(seed, i)) per "
-              "scene, as the service and CLI;\nbatch1t: SceneGenerator::sampleScenes with 1 "
-              "thread (results built); old: robosuite's scan of every entry, unpacked\n(the "
-              "radius test before issue 5). x faster: robosuite / +seed.\n");
+  std::printf(
+      "sample: engine seeded once and reused; +seed: engine.seed(sceneSeed(seed, i)) per "
+      "scene, as the service and CLI;\nbatch1t: SceneGenerator::sampleScenes with 1 "
+      "thread (results built); old: robosuite's scan of every entry, unpacked\n(the "
+      "radius test before issue 5). x faster: robosuite / +seed.\n");
 }
 
 void benchClutter(const Options& options) {
@@ -454,9 +460,10 @@ void benchClutter(const Options& options) {
     double robosuiteMs;  ///< [ms/scene] from issue 5, 0 = not given
   };
   const Point points[] = {{5, 0.06}, {10, 0.19}, {20, 0.76}, {40, 5.0}, {50, 0.0}};
-  std::printf("\nClutter: N cylinders r=0.03 h=0.1 in 0.6 x 0.6 m, both flags on, one thread (median "
-              "of %d;\nattempts and failures over %llu seeded scenes)\n",
-              options.repetitions, static_cast<unsigned long long>(options.statScenes));
+  std::printf(
+      "\nClutter: N cylinders r=0.03 h=0.1 in 0.6 x 0.6 m, both flags on, one thread (median "
+      "of %d;\nattempts and failures over %llu seeded scenes)\n",
+      options.repetitions, static_cast<unsigned long long>(options.statScenes));
   rule();
   std::printf("%3s %10s %10s %10s %10s %10s %8s %8s %5s %9s %8s\n", "N", "+seed", "sample",
               "grid only", "scan only", "robosuite", "att/obj", "fail", "same", "robosuite",
@@ -492,18 +499,21 @@ void benchClutter(const Options& options) {
     reused.push_back(rr);
     attempts.push_back(a.attemptsPerObject() * point.n);
   }
-  std::printf("+seed: the default RadiusChecker with engine.seed(sceneSeed(seed, i)) per scene; "
-              "sample: the same, engine\nreused; grid only / scan only: RadiusChecker(0) / "
-              "RadiusChecker(max); robosuite scan: every entry, unpacked.\nsame: all four give the "
-              "same attempts, failures and placements.\n");
-  std::printf("log-log slope over N = 5..50: time per scene %.2f with seeding, %.2f without; "
-              "attempts per scene %.2f\n(robosuite's time: about 2.1)\n",
-              logLogSlope(ns, seeded), logLogSlope(ns, reused), logLogSlope(ns, attempts));
+  std::printf(
+      "+seed: the default RadiusChecker with engine.seed(sceneSeed(seed, i)) per scene; "
+      "sample: the same, engine\nreused; grid only / scan only: RadiusChecker(0) / "
+      "RadiusChecker(max); robosuite scan: every entry, unpacked.\nsame: all four give the "
+      "same attempts, failures and placements.\n");
+  std::printf(
+      "log-log slope over N = 5..50: time per scene %.2f with seeding, %.2f without; "
+      "attempts per scene %.2f\n(robosuite's time: about 2.1)\n",
+      logLogSlope(ns, seeded), logLogSlope(ns, reused), logLogSlope(ns, attempts));
 }
 
 void benchFcl(const Options& options) {
-  std::printf("\nfcl against radius, time per scene, one thread, per-scene seeding (median of %d)\n",
-              options.repetitions);
+  std::printf(
+      "\nfcl against radius, time per scene, one thread, per-scene seeding (median of %d)\n",
+      options.repetitions);
   rule();
   std::printf("%-14s %14s %14s %10s\n", "config", "radius[ns]", "fcl[ns]", "fcl/radius");
   rule();
@@ -525,8 +535,9 @@ void benchFcl(const Options& options) {
       continue;
     }
     const Setup fcl = makeSetup(c.tree, ps::CollisionMode::Fcl);
-    SceneLoop fclLoop(fcl.request, ps::makeCollisionChecker(
-                                       ps::CollisionMode::Fcl, fcl.generator->config().collisionMargin));
+    SceneLoop fclLoop(
+        fcl.request,
+        ps::makeCollisionChecker(ps::CollisionMode::Fcl, fcl.generator->config().collisionMargin));
     const double f = nsPerOp(options, [&](std::uint64_t n) { fclLoop.runSeeded(n); });
     std::printf("%-14s %14.0f %14.0f %10.2f\n", c.name, r, f, f / r);
   }
@@ -552,9 +563,10 @@ void benchBatch(const Options& options) {
       }
     }
   }
-  std::printf("\nBatch: K = %llu PickPlace scenes through SceneGenerator::sampleScenes "
-              "(%d runs each, alternating; hardware_concurrency %u)\n",
-              static_cast<unsigned long long>(k), repetitions, std::thread::hardware_concurrency());
+  std::printf(
+      "\nBatch: K = %llu PickPlace scenes through SceneGenerator::sampleScenes "
+      "(%d runs each, alternating; hardware_concurrency %u)\n",
+      static_cast<unsigned long long>(k), repetitions, std::thread::hardware_concurrency());
   rule();
   std::printf("%8s %16s %16s %16s %12s %12s\n", "threads", "median [ms]", "fastest [ms]",
               "median ns/scene", "speed-up", "(fastest)");

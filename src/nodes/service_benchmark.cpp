@@ -68,10 +68,11 @@ int main(int argc, char** argv) {
     } else if (arg == "--calls" && i + 1 < argc) {
       calls = std::max(1, std::atoi(argv[++i]));
     } else {
-      std::fprintf(stderr,
-                   "usage: service_benchmark [--server NS] [--calls N]\n"
-                   "Calls NS/sample_placements and NS/ping alternately, N times each (default "
-                   "/placement_server, 2000),\nwith dry_run false then true, and prints p50/p99.\n");
+      std::fprintf(
+          stderr,
+          "usage: service_benchmark [--server NS] [--calls N]\n"
+          "Calls NS/sample_placements and NS/ping alternately, N times each (default "
+          "/placement_server, 2000),\nwith dry_run false then true, and prints p50/p99.\n");
       return 2;
     }
   }
@@ -85,7 +86,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   // Persistent: one TCP connection each, as a client calling in a loop would keep.
-  ros::ServiceClient sampleClient = nh.serviceClient<placement_samplers::SamplePlacements>(sampleName, true);
+  ros::ServiceClient sampleClient =
+      nh.serviceClient<placement_samplers::SamplePlacements>(sampleName, true);
   ros::ServiceClient pingClient = nh.serviceClient<std_srvs::Empty>(pingName, true);
 
   measure(sampleClient, pingClient, 200, true);  // warm up connections, caches, allocators

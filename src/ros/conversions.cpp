@@ -8,7 +8,8 @@
 namespace placement_samplers {
 namespace ros_interface {
 
-geometry_msgs::Pose toPoseMsg(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation) {
+geometry_msgs::Pose toPoseMsg(const Eigen::Vector3d& position,
+                              const Eigen::Quaterniond& orientation) {
   geometry_msgs::Pose pose;
   pose.position.x = position.x();
   pose.position.y = position.y();
@@ -108,8 +109,9 @@ SampleRequest toSampleRequest(const SamplePlacements::Request& req) {
       out.onTop = false;
       break;
     default:
-      throw RequestError("on_top must be ON_TOP_DEFAULT (0), ON_TOP_TRUE (1) or ON_TOP_FALSE (2), got " +
-                         std::to_string(static_cast<int>(req.on_top)));
+      throw RequestError(
+          "on_top must be ON_TOP_DEFAULT (0), ON_TOP_TRUE (1) or ON_TOP_FALSE (2), got " +
+          std::to_string(static_cast<int>(req.on_top)));
   }
   switch (req.collision_check) {
     case SamplePlacements::Request::CHECK_DEFAULT:

@@ -74,8 +74,7 @@ void PlacementServer::start() {
   publisher_ = std::thread(&PlacementServer::publishLoop, this);
   ROS_INFO_STREAM("placement_server: " << generator->config().objects.size() << " objects, "
                                        << generator->config().fixtures.size()
-                                       << " fixtures; serving "
-                                       << sampleService_.getService());
+                                       << " fixtures; serving " << sampleService_.getService());
 }
 
 void PlacementServer::advertise() {
@@ -88,7 +87,8 @@ void PlacementServer::advertise() {
   broadcaster_.reset();
   broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
   markerPublisher_ = privateHandle_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
-  sampleService_ = privateHandle_.advertiseService("sample_placements", &PlacementServer::sample, this);
+  sampleService_ =
+      privateHandle_.advertiseService("sample_placements", &PlacementServer::sample, this);
   reloadService_ = privateHandle_.advertiseService("reload", &PlacementServer::reload, this);
   pingService_ = privateHandle_.advertiseService("ping", &PlacementServer::ping, this);
   if (!frames_.empty()) {
@@ -141,7 +141,8 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     response.frame_id = config.frameId;
     const std::uint32_t count = std::max<std::uint32_t>(request.num_scenes, 1);
     if (count > config.maxScenesPerRequest) {
-      throw RequestError("num_scenes " + std::to_string(count) + " exceeds max_scenes_per_request (" +
+      throw RequestError("num_scenes " + std::to_string(count) +
+                         " exceeds max_scenes_per_request (" +
                          std::to_string(config.maxScenesPerRequest) + ")");
     }
     SampleRequest sampleRequest = toSampleRequest(request);
@@ -160,8 +161,9 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
       response.scenes.push_back(toSceneMsg(scene));
       if (!scene.success) {
         if (failed == 0) {
-          response.message = count == 1 ? scene.message
-                                        : "scene " + std::to_string(scene.index) + ": " + scene.message;
+          response.message = count == 1
+                                 ? scene.message
+                                 : "scene " + std::to_string(scene.index) + ": " + scene.message;
         }
         ++failed;
       }
@@ -169,8 +171,8 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     if (failed > 0) {
       response.success = false;
       if (failed > 1) {
-        response.message += " (" + std::to_string(failed) + " of " + std::to_string(count) +
-                            " scenes failed)";
+        response.message +=
+            " (" + std::to_string(failed) + " of " + std::to_string(count) + " scenes failed)";
       }
     } else if (!request.dry_run) {
       {
@@ -212,8 +214,9 @@ bool PlacementServer::reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Res
       generator_ = generator;
     }
     response.success = true;
-    response.message = "configuration reloaded: " + std::to_string(generator->config().objects.size()) +
-                       " objects, " + std::to_string(generator->config().fixtures.size()) + " fixtures";
+    response.message =
+        "configuration reloaded: " + std::to_string(generator->config().objects.size()) +
+        " objects, " + std::to_string(generator->config().fixtures.size()) + " fixtures";
     ROS_INFO_STREAM("placement_server: " << response.message);
   } catch (const std::exception& e) {
     response.success = false;

@@ -22,13 +22,13 @@ std_msgs::ColorRGBA colour(float r, float g, float b, float a) {
 
 std_msgs::ColorRGBA paletteColour(std::size_t i) {
   static const std::array<std::array<float, 3>, 8> palette{{{0.90f, 0.30f, 0.24f},
-                                                             {0.20f, 0.60f, 0.86f},
-                                                             {0.18f, 0.80f, 0.44f},
-                                                             {0.95f, 0.77f, 0.06f},
-                                                             {0.61f, 0.35f, 0.71f},
-                                                             {0.90f, 0.49f, 0.13f},
-                                                             {0.10f, 0.74f, 0.61f},
-                                                             {0.91f, 0.30f, 0.60f}}};
+                                                            {0.20f, 0.60f, 0.86f},
+                                                            {0.18f, 0.80f, 0.44f},
+                                                            {0.95f, 0.77f, 0.06f},
+                                                            {0.61f, 0.35f, 0.71f},
+                                                            {0.90f, 0.49f, 0.13f},
+                                                            {0.10f, 0.74f, 0.61f},
+                                                            {0.91f, 0.30f, 0.60f}}};
   const auto& c = palette[i % palette.size()];
   return colour(c[0], c[1], c[2], 1.0f);
 }
@@ -66,8 +66,7 @@ class MarkerBuilder {
           add(ns, Marker::CYLINDER, shapePose,
               Eigen::Vector3d(2 * shape.radius, 2 * shape.radius, shape.length), colour);
           for (double s : {-0.5, 0.5}) {
-            add(ns, Marker::SPHERE,
-                shapePose * Eigen::Translation3d(0.0, 0.0, s * shape.length),
+            add(ns, Marker::SPHERE, shapePose * Eigen::Translation3d(0.0, 0.0, s * shape.length),
                 Eigen::Vector3d::Constant(2 * shape.radius), colour);
           }
           break;
@@ -129,7 +128,8 @@ class MarkerBuilder {
 
 visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
                                                  const SceneResult& scene,
-                                                 const std::string& frameId, const ros::Time& stamp) {
+                                                 const std::string& frameId,
+                                                 const ros::Time& stamp) {
   MarkerBuilder builder(frameId, stamp);
   for (const FixtureSpec& f : request.fixtures) {
     builder.object("fixtures", *f.object, f.position, f.orientation,

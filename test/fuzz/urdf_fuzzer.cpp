@@ -12,8 +12,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace placement_samplers;
   const std::string text(reinterpret_cast<const char*>(data), size);
-  MeshLoader meshes([](const std::string&) { return std::string("/nonexistent"); },
-                    "/nonexistent");
+  MeshLoader meshes([](const std::string&) { return std::string("/nonexistent"); }, "/nonexistent");
   for (const char* link : {"", "base_link"}) {
     try {
       std::vector<Shape> shapes = urdfCollisionShapes(text, link, meshes, "");

@@ -21,7 +21,8 @@ namespace {
 using placement_samplers::SamplePlacements;
 
 const char* const kService = "/placement_server/sample_placements";
-const std::string kConfig = std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/test/data/server_test.yaml";
+const std::string kConfig =
+    std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/test/data/server_test.yaml";
 
 SamplePlacements call(SamplePlacements::Request request) {
   SamplePlacements srv;
@@ -37,7 +38,8 @@ SamplePlacements::Request seeded(std::uint64_t seed, std::uint32_t scenes = 1) {
   return r;
 }
 
-std::map<std::string, placement_samplers::Placement> byName(const placement_samplers::Scene& scene) {
+std::map<std::string, placement_samplers::Placement> byName(
+    const placement_samplers::Scene& scene) {
   std::map<std::string, placement_samplers::Placement> out;
   for (const auto& p : scene.placements) {
     out[p.name] = p;
@@ -88,12 +90,12 @@ TEST_F(PlacementServerTest, PlacementsRespectRegionsStackingAndRadiusTest) {
   const SamplePlacements srv = call(seeded(99, 100));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
   ASSERT_EQ(srv.response.scenes.size(), 100u);
-  const std::map<std::string, double> radius{{"plate", 0.09}, {"cube", std::sqrt(2.0) * 0.021},
-                                             {"can", 0.033}, {"ball", 0.03}};
-  const std::map<std::string, double> bottom{{"plate", -0.01}, {"cube", -0.021}, {"can", -0.06},
-                                             {"ball", -0.03}};
-  const std::map<std::string, double> top{{"plate", 0.01}, {"cube", 0.021}, {"can", 0.06},
-                                          {"ball", 0.03}};
+  const std::map<std::string, double> radius{
+      {"plate", 0.09}, {"cube", std::sqrt(2.0) * 0.021}, {"can", 0.033}, {"ball", 0.03}};
+  const std::map<std::string, double> bottom{
+      {"plate", -0.01}, {"cube", -0.021}, {"can", -0.06}, {"ball", -0.03}};
+  const std::map<std::string, double> top{
+      {"plate", 0.01}, {"cube", 0.021}, {"can", 0.06}, {"ball", 0.03}};
   const double tableTop = 0.775 + 0.025;
   for (const auto& scene : srv.response.scenes) {
     const auto placed = byName(scene);
@@ -246,7 +248,9 @@ TEST_F(PlacementServerTest, TimeLimitStopsAHopelessRequest) {
   const SamplePlacements srv = call(r);
   const double seconds = (ros::WallTime::now() - start).toSec();
   EXPECT_FALSE(srv.response.success);
-  EXPECT_EQ(srv.response.message.rfind("stopped placing object 'cube' with sampler 'TableSampler' after ", 0), 0u)
+  EXPECT_EQ(srv.response.message.rfind(
+                "stopped placing object 'cube' with sampler 'TableSampler' after ", 0),
+            0u)
       << srv.response.message;
   const std::string suffix = " attempts: the request ran out of time";
   ASSERT_GT(srv.response.message.size(), suffix.size());
@@ -259,8 +263,8 @@ TEST_F(PlacementServerTest, TimeLimitStopsAHopelessRequest) {
 // Exact checks per request: objects resting on the table (z_offset 0.01) pass, and no two
 // placed objects' boxes/cylinders/spheres intersect (their circles may).
 TEST_F(PlacementServerTest, FclModePerRequest) {
-  for (std::uint8_t mode : {SamplePlacements::Request::CHECK_FCL,
-                            SamplePlacements::Request::CHECK_RADIUS_AND_FCL}) {
+  for (std::uint8_t mode :
+       {SamplePlacements::Request::CHECK_FCL, SamplePlacements::Request::CHECK_RADIUS_AND_FCL}) {
     SamplePlacements::Request r = seeded(21, 20);
     r.collision_check = mode;
     r.dry_run = true;
@@ -299,7 +303,10 @@ TEST_F(PlacementServerTest, BadRequestsAnswerWithTheReason) {
          r.fixtures[0].object = "anvil";
        },
        "fixture 'box1': unknown object 'anvil'"},
-      {"duplicate fixtures", [&](auto& r) { r.fixtures = {ok, ok}; },
+      {"duplicate fixtures",
+       [&](auto& r) {
+         r.fixtures = {ok, ok};
+       },
        "fixture 'box1': the name is used twice"},
       {"fixture named like the configured one",
        [&](auto& r) {
@@ -357,12 +364,14 @@ TEST_F(PlacementServerTest, BadRequestsAnswerWithTheReason) {
        "CHECK_RADIUS_AND_FCL (3), got 9"},
       {"too many scenes", [](auto& r) { r.num_scenes = 501; },
        "num_scenes 501 exceeds max_scenes_per_request (500)"},
-      {"reference and point", [](auto& r) {
+      {"reference and point",
+       [](auto& r) {
          r.reference = "table";
          r.use_reference_point = true;
        },
        "give either reference or use_reference_point, not both"},
-      {"NaN reference point", [](auto& r) {
+      {"NaN reference point",
+       [](auto& r) {
          r.use_reference_point = true;
          r.reference_point.x = std::numeric_limits<double>::infinity();
        },
@@ -404,9 +413,11 @@ TEST_F(PlacementServerTest, FramesReachATfListener) {
     }
     EXPECT_TRUE(same) << p.name;
   }
-  const auto table = buffer.lookupTransform("world", "test/table", ros::Time(0), ros::Duration(5.0));
+  const auto table =
+      buffer.lookupTransform("world", "test/table", ros::Time(0), ros::Duration(5.0));
   EXPECT_DOUBLE_EQ(table.transform.translation.z, 0.775);
-  const auto bin = buffer.lookupTransform("world", "test/far_bin", ros::Time(0), ros::Duration(5.0));
+  const auto bin =
+      buffer.lookupTransform("world", "test/far_bin", ros::Time(0), ros::Duration(5.0));
   EXPECT_DOUBLE_EQ(bin.transform.translation.x, 5.0);
 
   // A dry run broadcasts nothing: the frames keep the last scene.
@@ -448,7 +459,8 @@ TEST_F(PlacementServerTest, MarkersShowObjectsFixturesAndRegions) {
   std::map<std::string, int> count;
   for (const auto& m : markers.markers) {
     count[m.ns]++;
-    EXPECT_EQ(m.header.frame_id, m.action == visualization_msgs::Marker::DELETEALL ? m.header.frame_id : "world");
+    EXPECT_EQ(m.header.frame_id,
+              m.action == visualization_msgs::Marker::DELETEALL ? m.header.frame_id : "world");
   }
   // plate, cup, cube, can, ball (the hidden pill is not drawn).
   EXPECT_EQ(count["objects"], 5);

@@ -15,7 +15,8 @@ struct NodeRun {
 };
 
 NodeRun runNode(const std::string& name) {
-  const std::string command = std::string("timeout 30 ") + PLACEMENT_SERVER_BIN + " __name:=" + name + " 2>&1";
+  const std::string command =
+      std::string("timeout 30 ") + PLACEMENT_SERVER_BIN + " __name:=" + name + " 2>&1";
   NodeRun run;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) {

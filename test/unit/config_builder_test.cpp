@@ -82,8 +82,8 @@ max_attempts: 100
 }
 
 TEST(ConfigBuilder, LoadsTheDefaultConfiguration) {
-  const auto config =
-      buildSceneConfig(loadYamlFile(std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/config/default.yaml"));
+  const auto config = buildSceneConfig(
+      loadYamlFile(std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/config/default.yaml"));
   EXPECT_EQ(config->objects.size(), 7u);
   ASSERT_EQ(config->fixtures.size(), 1u);
   EXPECT_EQ(config->fixtures[0].name, "table");
@@ -198,7 +198,8 @@ samplers:
 )");
   EXPECT_EQ(uniformNamed(*config, "Absent").params().rotation.kind, RotationSpec::Kind::Full);
   EXPECT_EQ(uniformNamed(*config, "NullRotation").params().rotation.kind, RotationSpec::Kind::Full);
-  EXPECT_EQ(uniformNamed(*config, "TildeRotation").params().rotation.kind, RotationSpec::Kind::Full);
+  EXPECT_EQ(uniformNamed(*config, "TildeRotation").params().rotation.kind,
+            RotationSpec::Kind::Full);
   const RotationSpec fixed = uniformNamed(*config, "Fixed").params().rotation;
   EXPECT_EQ(fixed.kind, RotationSpec::Kind::Fixed);
   EXPECT_EQ(fixed.low, -0.25);
@@ -227,11 +228,13 @@ TEST(ConfigBuilder, UnknownKeysNameThePath) {
   EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [1, 1, 1], radius: 1}\n"),
             "objects.cube: unknown key 'radius' (expected one of: shape, size, horizontal_radius, "
             "bottom_offset, top_offset, init_orientation)");
-  EXPECT_EQ(buildError("objects:\n  ball: {shape: sphere, radius: 1, length: 1}\n"),
-            "objects.ball: unknown key 'length' (expected one of: shape, radius, horizontal_radius, "
-            "bottom_offset, top_offset, init_orientation)");
-  EXPECT_EQ(buildError(kObjects + "  - {name: desk, object: cube, pos: [0, 0, 0]}\n"),
-            "fixtures[1]: unknown key 'pos' (expected one of: name, object, position, orientation)");
+  EXPECT_EQ(
+      buildError("objects:\n  ball: {shape: sphere, radius: 1, length: 1}\n"),
+      "objects.ball: unknown key 'length' (expected one of: shape, radius, horizontal_radius, "
+      "bottom_offset, top_offset, init_orientation)");
+  EXPECT_EQ(
+      buildError(kObjects + "  - {name: desk, object: cube, pos: [0, 0, 0]}\n"),
+      "fixtures[1]: unknown key 'pos' (expected one of: name, object, position, orientation)");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, sample_args: {ontop: true}}\n"),
             "samplers[0].sample_args: unknown key 'ontop' (expected one of: reference, on_top)");
   EXPECT_EQ(buildError("samplers:\n  - {name: C, type: sequential, samplers: [], objects: []}\n"),
@@ -251,7 +254,8 @@ TEST(ConfigBuilder, YamlSyntaxAndDocumentErrors) {
 
 TEST(ConfigBuilder, ObjectShapeErrors) {
   EXPECT_EQ(buildError("objects:\n  cube: {size: [1, 1, 1]}\n"),
-            "objects.cube: missing required key 'shape' (box, cylinder, sphere, capsule or mesh), or urdf_file or urdf_param");
+            "objects.cube: missing required key 'shape' (box, cylinder, sphere, capsule or mesh), "
+            "or urdf_file or urdf_param");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: cube, size: [1, 1, 1]}\n"),
             "objects.cube.shape: expected one of box, cylinder, sphere, capsule, mesh, got 'cube'");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: 3}\n"),
@@ -268,8 +272,9 @@ TEST(ConfigBuilder, ObjectShapeErrors) {
 }
 
 TEST(ConfigBuilder, NonPositiveSizes) {
-  EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [0.1, 0, 0.1]}\n"),
-            "objects.cube.size: expected three positive extents [x, y, z] in [m], got [0.1, 0, 0.1]");
+  EXPECT_EQ(
+      buildError("objects:\n  cube: {shape: box, size: [0.1, 0, 0.1]}\n"),
+      "objects.cube.size: expected three positive extents [x, y, z] in [m], got [0.1, 0, 0.1]");
   EXPECT_EQ(buildError("objects:\n  can: {shape: cylinder, radius: -0.1, length: 1}\n"),
             "objects.can.radius: expected a positive size in [m], got -0.1");
   EXPECT_EQ(buildError("objects:\n  pill: {shape: capsule, radius: 0.1, length: 0}\n"),
@@ -308,11 +313,14 @@ objects:
   EXPECT_NEAR(config->findObject("lying")->topOffset.z(), 0.03, 1e-12);
   // Within 1e-3 of unit: accepted and normalized.
   EXPECT_NEAR(config->findObject("almost")->initOrientation.norm(), 1.0, 1e-15);
-  EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [1, 1, 1], init_orientation: [0, 0, 0, 2]}\n"),
-            "objects.cube.init_orientation: expected a unit quaternion [x, y, z, w], got one of "
-            "norm 2");
-  EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [1, 1, 1], init_orientation: [0, 0, 1]}\n"),
-            "objects.cube.init_orientation: expected a list of 4 numbers, got a list of 3 elements");
+  EXPECT_EQ(
+      buildError(
+          "objects:\n  cube: {shape: box, size: [1, 1, 1], init_orientation: [0, 0, 0, 2]}\n"),
+      "objects.cube.init_orientation: expected a unit quaternion [x, y, z, w], got one of "
+      "norm 2");
+  EXPECT_EQ(
+      buildError("objects:\n  cube: {shape: box, size: [1, 1, 1], init_orientation: [0, 0, 1]}\n"),
+      "objects.cube.init_orientation: expected a list of 4 numbers, got a list of 3 elements");
 }
 
 TEST(ConfigBuilder, Fixtures) {
@@ -344,9 +352,10 @@ TEST(ConfigBuilder, FixtureErrors) {
             "fixtures[1].name: fixture names must match [A-Za-z0-9_-]+, got 'my desk'");
   EXPECT_EQ(buildError(kObjects + "  - {name: desk, object: table_top}\n"),
             "fixtures[1]: missing required key 'position'");
-  EXPECT_EQ(buildError(kObjects +
-                       "  - {name: desk, object: table_top, position: [0, 0, 0], orientation: [0, 0, 0, 0.5]}\n"),
-            "fixtures[1].orientation: expected a unit quaternion [x, y, z, w], got one of norm 0.5");
+  EXPECT_EQ(
+      buildError(kObjects + "  - {name: desk, object: table_top, position: [0, 0, 0], orientation: "
+                            "[0, 0, 0, 0.5]}\n"),
+      "fixtures[1].orientation: expected a unit quaternion [x, y, z, w], got one of norm 0.5");
 }
 
 TEST(ConfigBuilder, ReversedRange) {
@@ -357,11 +366,12 @@ TEST(ConfigBuilder, ReversedRange) {
 }
 
 TEST(ConfigBuilder, EmptyShrunkRegion) {
-  EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: S, objects: [ball], x_range: [-0.04, 0.04], "
-                                  "y_range: [-1, 1]}\n"),
-            "samplers[0].x_range: sampler 'S': x_range [-0.04, 0.04] leaves no room for object 'ball' "
-            "(horizontal radius 0.05 m) with ensure_object_boundary_in_range on: the range must be "
-            "at least 0.1 m wide");
+  EXPECT_EQ(
+      buildError(kObjects + "samplers:\n  - {name: S, objects: [ball], x_range: [-0.04, 0.04], "
+                            "y_range: [-1, 1]}\n"),
+      "samplers[0].x_range: sampler 'S': x_range [-0.04, 0.04] leaves no room for object 'ball' "
+      "(horizontal radius 0.05 m) with ensure_object_boundary_in_range on: the range must be "
+      "at least 0.1 m wide");
   // Without the shrink the same region is fine.
   EXPECT_NO_THROW(buildFromYaml(kObjects +
                                 "samplers:\n  - {name: S, objects: [ball], x_range: [-0.04, 0.04], "
@@ -373,7 +383,8 @@ TEST(ConfigBuilder, SamplerValueErrors) {
             "samplers[0].rotation_axis: expected x, y or z, got 'w'");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, type: random}\n"),
             "samplers[0].type: expected uniform or sequential, got 'random'");
-  EXPECT_EQ(buildError("samplers:\n  - {objects: []}\n"), "samplers[0]: missing required key 'name'");
+  EXPECT_EQ(buildError("samplers:\n  - {objects: []}\n"),
+            "samplers[0]: missing required key 'name'");
   EXPECT_EQ(buildError("samplers:\n  - {name: \"\"}\n"),
             "samplers[0].name: expected a non-empty sampler name");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, ensure_valid_placement: yes}\n"),
@@ -411,7 +422,8 @@ TEST(ConfigBuilder, ServiceSettings) {
   EXPECT_EQ(config->threads, 4u);
   EXPECT_EQ(config->maxScenesPerRequest, 50u);
   EXPECT_EQ(config->maxRequestSeconds, 2.0);
-  EXPECT_EQ(buildError("threads: 0\n"), "threads: expected an integer in [1, 64], got an integer (0)");
+  EXPECT_EQ(buildError("threads: 0\n"),
+            "threads: expected an integer in [1, 64], got an integer (0)");
   EXPECT_EQ(buildError("max_scenes_per_request: 0\n"),
             "max_scenes_per_request: expected an integer in [1, 100000000], got an integer (0)");
   EXPECT_EQ(buildError("max_request_seconds: 0\n"),
@@ -421,33 +433,40 @@ TEST(ConfigBuilder, ServiceSettings) {
 TEST(ConfigBuilder, UnknownObjects) {
   EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: S, objects: [cube, cub]}\n"),
             "samplers[0].objects[1]: unknown object 'cub' (not under objects)");
-  EXPECT_EQ(buildError(kObjects + "hide: [ghost]\n"), "hide[0]: unknown object 'ghost' (not under objects)");
+  EXPECT_EQ(buildError(kObjects + "hide: [ghost]\n"),
+            "hide[0]: unknown object 'ghost' (not under objects)");
 }
 
 TEST(ConfigBuilder, DuplicateObjects) {
   EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: S, objects: [cube, cube]}\n"),
             "samplers[0].objects[1]: object 'cube' is already placed by another sampler or hidden");
-  EXPECT_EQ(buildError(kObjects +
-                       "samplers:\n  - {name: S, objects: [cube], x_range: [-1, 1], y_range: [-1, 1]}\n"
-                       "  - {name: T, objects: [ball, cube]}\n"),
-            "samplers[1].objects[1]: object 'cube' is already placed by another sampler or hidden");
-  EXPECT_EQ(buildError(kObjects +
-                       "samplers:\n  - {name: S, objects: [cube], x_range: [-1, 1], y_range: [-1, 1]}\n"
-                       "hide: [pill, cube]\n"),
-            "hide[1]: object 'cube' is already placed by another sampler or hidden");
+  EXPECT_EQ(
+      buildError(kObjects +
+                 "samplers:\n  - {name: S, objects: [cube], x_range: [-1, 1], y_range: [-1, 1]}\n"
+                 "  - {name: T, objects: [ball, cube]}\n"),
+      "samplers[1].objects[1]: object 'cube' is already placed by another sampler or hidden");
+  EXPECT_EQ(
+      buildError(kObjects +
+                 "samplers:\n  - {name: S, objects: [cube], x_range: [-1, 1], y_range: [-1, 1]}\n"
+                 "hide: [pill, cube]\n"),
+      "hide[1]: object 'cube' is already placed by another sampler or hidden");
 }
 
 TEST(ConfigBuilder, DuplicateOrReservedSamplerName) {
   EXPECT_EQ(buildError("samplers:\n  - {name: S}\n  - {name: S}\n"),
             "samplers[1].name: sampler name 'S' is already used by another sampler");
-  EXPECT_EQ(buildError("samplers:\n  - {name: root}\n"),
-            "samplers[0].name: sampler name 'root' is reserved (root is the root, HideSampler places the "
-            "hidden objects)");
-  EXPECT_EQ(buildError("samplers:\n  - {name: HideSampler}\n"),
-            "samplers[0].name: sampler name 'HideSampler' is reserved (root is the root, HideSampler "
-            "places the hidden objects)");
-  EXPECT_EQ(buildError("samplers:\n  - {name: S}\n  - {name: C, type: sequential, samplers: [{name: S}]}\n"),
-            "samplers[1].samplers[0].name: sampler name 'S' is already used by another sampler");
+  EXPECT_EQ(
+      buildError("samplers:\n  - {name: root}\n"),
+      "samplers[0].name: sampler name 'root' is reserved (root is the root, HideSampler places the "
+      "hidden objects)");
+  EXPECT_EQ(
+      buildError("samplers:\n  - {name: HideSampler}\n"),
+      "samplers[0].name: sampler name 'HideSampler' is reserved (root is the root, HideSampler "
+      "places the hidden objects)");
+  EXPECT_EQ(
+      buildError(
+          "samplers:\n  - {name: S}\n  - {name: C, type: sequential, samplers: [{name: S}]}\n"),
+      "samplers[1].samplers[0].name: sampler name 'S' is already used by another sampler");
 }
 
 TEST(ConfigBuilder, References) {
@@ -469,10 +488,13 @@ samplers:
 )"),
             "samplers[0].sample_args.reference: reference 'plate' of sampler 'CupSampler' is "
             "neither a fixture nor an object placed by an earlier sampler");
-  EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: S, objects: [plate], sample_args: {reference: plate}}\n"),
-            "samplers[0].sample_args.reference: reference 'plate' of sampler 'S' is neither a "
-            "fixture nor an object placed by an earlier sampler");
-  EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: S, objects: [cube], sample_args: {reference: pill}}\nhide: [pill]\n"),
+  EXPECT_EQ(
+      buildError(kObjects +
+                 "samplers:\n  - {name: S, objects: [plate], sample_args: {reference: plate}}\n"),
+      "samplers[0].sample_args.reference: reference 'plate' of sampler 'S' is neither a "
+      "fixture nor an object placed by an earlier sampler");
+  EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: S, objects: [cube], sample_args: "
+                                  "{reference: pill}}\nhide: [pill]\n"),
             "samplers[0].sample_args.reference: reference 'pill' of sampler 'S' is neither a "
             "fixture nor an object placed by an earlier sampler");
   EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: S, sample_args: {reference: nowhere}}\n"),
@@ -502,8 +524,9 @@ hide: [pill]
   for (const PlacementSampler* s : all) {
     names.push_back(s->name());
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"root", "PlateSampler", "OnPlate", "CupSampler",
-                                             "Deeper", "BallSampler", "CubeSampler", "HideSampler"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"root", "PlateSampler", "OnPlate", "CupSampler", "Deeper",
+                                      "BallSampler", "CubeSampler", "HideSampler"}));
   std::vector<std::string> objects;
   for (const ObjectPtr& o : config->root->objects()) {
     objects.push_back(o->name);
@@ -526,8 +549,11 @@ samplers:
             "samplers[0].sample_args.reference: reference 'plate' of sampler 'CupSampler' is "
             "neither a fixture nor an object placed by an earlier sampler");
   // Errors inside name their nested path.
-  EXPECT_EQ(buildError(kObjects + "samplers:\n  - {name: C, type: sequential, samplers: [{name: S, objects: [mug]}]}\n"),
-            "samplers[0].samplers[0].objects[0]: unknown object 'mug' (not under objects)");
+  EXPECT_EQ(
+      buildError(
+          kObjects +
+          "samplers:\n  - {name: C, type: sequential, samplers: [{name: S, objects: [mug]}]}\n"),
+      "samplers[0].samplers[0].objects[0]: unknown object 'mug' (not under objects)");
   EXPECT_EQ(buildError("samplers:\n  - {name: C, type: sequential}\n"),
             "samplers[0]: missing required key 'samplers'");
 }

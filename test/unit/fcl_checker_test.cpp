@@ -105,7 +105,8 @@ std::vector<Eigen::Vector3d> boxCorners(const Shape& shape, const Eigen::Vector3
 
 /// Penetration depth of two rectangles in the plane (corners counter-clockwise or clockwise),
 /// by separating axes: <= 0 when they are apart or touch.
-double rectangleOverlap(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b) {
+double rectangleOverlap(const std::vector<Eigen::Vector2d>& a,
+                        const std::vector<Eigen::Vector2d>& b) {
   double depth = std::numeric_limits<double>::infinity();
   for (const std::vector<Eigen::Vector2d>* poly : {&a, &b}) {
     for (std::size_t i = 0; i < 4; ++i) {
@@ -130,8 +131,9 @@ double rectangleOverlap(const std::vector<Eigen::Vector2d>& a, const std::vector
 std::vector<Eigen::Vector2d> footprint(const ObjectPlacement& p) {
   const Eigen::Vector3d half = 0.5 * p.object->shapes.front().size;
   std::vector<Eigen::Vector2d> out;
-  for (const Eigen::Vector2d& c : {Eigen::Vector2d(-half.x(), -half.y()), Eigen::Vector2d(half.x(), -half.y()),
-                                   Eigen::Vector2d(half.x(), half.y()), Eigen::Vector2d(-half.x(), half.y())}) {
+  for (const Eigen::Vector2d& c :
+       {Eigen::Vector2d(-half.x(), -half.y()), Eigen::Vector2d(half.x(), -half.y()),
+        Eigen::Vector2d(half.x(), half.y()), Eigen::Vector2d(-half.x(), half.y())}) {
     out.push_back((p.position + p.orientation * Eigen::Vector3d(c.x(), c.y(), 0.0)).head<2>());
   }
   return out;
@@ -345,14 +347,14 @@ TEST(FclChecker, ObjectInsideABinAcceptedThroughItsWallRejected) {
 
   Scene fcl = fclScene();
   fcl.add("bin", bin, binPos, Eigen::Quaterniond::Identity(), true);
-  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1, -0.25, floorZ)), kNone);           // centre
-  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 + 0.17, -0.25, floorZ)), kNone);    // touches +x
-  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1, -0.25 - 0.22, floorZ)), kNone);    // touches -y
-  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 + 0.18, -0.25, floorZ)), 0);        // into +x
-  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 + 0.195, -0.25, floorZ)), 0);       // through +x
-  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 - 0.195, -0.1, floorZ)), 0);        // through -x
-  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1, -0.25 + 0.245, floorZ)), 0);       // through +y
-  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1, -0.25, floorZ - 0.005)), 0);       // into floor
+  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1, -0.25, floorZ)), kNone);         // centre
+  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 + 0.17, -0.25, floorZ)), kNone);  // touches +x
+  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1, -0.25 - 0.22, floorZ)), kNone);  // touches -y
+  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 + 0.18, -0.25, floorZ)), 0);      // into +x
+  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 + 0.195, -0.25, floorZ)), 0);     // through +x
+  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 - 0.195, -0.1, floorZ)), 0);      // through -x
+  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1, -0.25 + 0.245, floorZ)), 0);     // through +y
+  EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1, -0.25, floorZ - 0.005)), 0);     // into floor
   // A corner turned into the wall: centre 0.165 from the wall's inner face, half-diagonal 0.028.
   EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 + 0.165, -0.25, floorZ), yaw(M_PI / 4)), 0);
   EXPECT_EQ(fcl.test(cube, Eigen::Vector3d(0.1 + 0.16, -0.25, floorZ), yaw(M_PI / 4)), kNone);
@@ -373,7 +375,8 @@ TEST(FclChecker, PickPlaceBinsKeepsObjectsInsideTheBins) {
       // Every extreme point inside the walls (the inside is convex, so is each shape).
       std::vector<Eigen::Vector3d> points;
       for (const Shape& shape : p.object->shapes) {
-        const Eigen::Isometry3d pose = Eigen::Translation3d(p.position) * p.orientation * shape.pose;
+        const Eigen::Isometry3d pose =
+            Eigen::Translation3d(p.position) * p.orientation * shape.pose;
         if (shape.type == ShapeType::Box) {
           const std::vector<Eigen::Vector3d> c = boxCorners(shape, p.position, p.orientation);
           points.insert(points.end(), c.begin(), c.end());
@@ -381,7 +384,8 @@ TEST(FclChecker, PickPlaceBinsKeepsObjectsInsideTheBins) {
           for (int k = 0; k < 360; ++k) {  // rim points; the chord error is below 1e-6 m
             const double t = 2.0 * M_PI * k / 360.0;
             for (double z : {-0.5, 0.5}) {
-              points.push_back(pose * Eigen::Vector3d(shape.radius * std::cos(t), shape.radius * std::sin(t),
+              points.push_back(pose * Eigen::Vector3d(shape.radius * std::cos(t),
+                                                      shape.radius * std::sin(t),
                                                       z * shape.length));
             }
           }
@@ -504,7 +508,8 @@ samplers:
 // ---- radius_and_fcl ----
 
 TEST(CombinedChecker, BothTestsMustPass) {
-  const std::unique_ptr<CollisionChecker> both = makeCollisionChecker(CollisionMode::RadiusAndFcl, 0.0);
+  const std::unique_ptr<CollisionChecker> both =
+      makeCollisionChecker(CollisionMode::RadiusAndFcl, 0.0);
   EXPECT_TRUE(both->needsOrientation());
   EXPECT_TRUE(makeCollisionChecker(CollisionMode::Fcl, 0.0)->needsOrientation());
   EXPECT_FALSE(makeCollisionChecker(CollisionMode::Radius, 0.0)->needsOrientation());
@@ -529,12 +534,13 @@ TEST(CombinedChecker, BothTestsMustPass) {
 
 /// Placements before the failure, per scene, for @p mode on config/long_boxes.yaml (the
 /// placements point into @p config).
-std::vector<std::size_t> packedCounts(const std::shared_ptr<SceneConfig>& config, CollisionMode mode,
-                                      std::vector<SceneResult>* out = nullptr) {
+std::vector<std::size_t> packedCounts(const std::shared_ptr<SceneConfig>& config,
+                                      CollisionMode mode, std::vector<SceneResult>* out = nullptr) {
   const SceneGenerator generator(config);
   SampleRequest request;
   request.collisionCheck = mode;
-  const std::vector<SceneResult> scenes = generator.sampleScenes(generator.prepare(request), 2024, 10, 2);
+  const std::vector<SceneResult> scenes =
+      generator.sampleScenes(generator.prepare(request), 2024, 10, 2);
   std::vector<std::size_t> counts;
   for (const SceneResult& scene : scenes) {
     EXPECT_FALSE(scene.success);  // 40 sticks never fit
@@ -556,7 +562,7 @@ TEST(FclChecker, PacksClearlyMoreLongBoxesThanRadius) {
   for (std::size_t i = 0; i < radius.size(); ++i) {
     radiusMean += static_cast<double>(radius[i]) / radius.size();
     fclMean += static_cast<double>(fcl[i]) / fcl.size();
-    EXPECT_LE(radius[i], 7u);   // circles of 0.1005 m in a 0.4 m square
+    EXPECT_LE(radius[i], 7u);  // circles of 0.1005 m in a 0.4 m square
     EXPECT_GE(fcl[i], 10u);
   }
   EXPECT_GT(fclMean, 3.0 * radiusMean) << "fcl " << fclMean << ", radius " << radiusMean;
@@ -564,7 +570,8 @@ TEST(FclChecker, PacksClearlyMoreLongBoxesThanRadius) {
   for (const SceneResult& scene : fclScenes) {
     for (std::size_t i = 0; i < scene.placements.size(); ++i) {
       for (std::size_t j = i + 1; j < scene.placements.size(); ++j) {
-        EXPECT_LE(rectangleOverlap(footprint(scene.placements[i]), footprint(scene.placements[j])), 1e-6)
+        EXPECT_LE(rectangleOverlap(footprint(scene.placements[i]), footprint(scene.placements[j])),
+                  1e-6)
             << scene.placements[i].name << " and " << scene.placements[j].name;
       }
     }

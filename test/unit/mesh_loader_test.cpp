@@ -33,8 +33,8 @@ class TempDir {
  public:
   TempDir() {
     static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("placement_samplers_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    path_ = fs::temp_directory_path() / ("placement_samplers_test_" + std::to_string(::getpid()) +
+                                         "_" + std::to_string(counter++));
     fs::create_directories(path_);
   }
   ~TempDir() {
@@ -95,7 +95,8 @@ Eigen::Vector3d highest(const Mesh& mesh) {
   return hi;
 }
 
-std::string loadError(const std::string& path, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones()) {
+std::string loadError(const std::string& path,
+                      const Eigen::Vector3d& scale = Eigen::Vector3d::Ones()) {
   try {
     loadMeshFile(path, scale, path);
   } catch (const ConfigError& e) {
@@ -146,8 +147,9 @@ TEST(MeshLoader, ResolvesUris) {
             "'package://other/a.stl': package 'other' not found by the package resolver");
   EXPECT_EQ(error("package://assets"), "'package://assets': expected package://PACKAGE/PATH");
   EXPECT_EQ(error("package:///a.stl"), "'package:///a.stl': expected package://PACKAGE/PATH");
-  EXPECT_EQ(error("http://example.com/a.stl"),
-            "'http://example.com/a.stl': unsupported URI scheme (use package://, file:// or a path)");
+  EXPECT_EQ(
+      error("http://example.com/a.stl"),
+      "'http://example.com/a.stl': unsupported URI scheme (use package://, file:// or a path)");
   EXPECT_EQ(error(""), "'': empty path");
   EXPECT_EQ(error("file://"), "'file://': empty path");
 }
@@ -176,9 +178,10 @@ TEST(MeshLoader, FindsPackagesThroughRosPackagePath) {
       resolveUri("package://unknown/x.stl", PackageResolver(), "");
       FAIL() << "no error";
     } catch (const ConfigError& e) {
-      EXPECT_EQ(std::string(e.what()), "'package://unknown/x.stl': package 'unknown' not found in "
-                                       "ROS_PACKAGE_PATH (" + root + "/ws:" + root + "/checkout::" +
-                                           root + "/share)");
+      EXPECT_EQ(std::string(e.what()),
+                "'package://unknown/x.stl': package 'unknown' not found in "
+                "ROS_PACKAGE_PATH (" +
+                    root + "/ws:" + root + "/checkout::" + root + "/share)");
     }
   }
   {
@@ -208,9 +211,12 @@ TEST(MeshLoader, ReadsAsciiStl) {
 
 TEST(MeshLoader, ReadsBinaryStlWithScale) {
   TempDir dir;
-  dir.write("two.stl", binaryStl({{Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, 1, 0)},
-                                   {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(0, 1, 0), Eigen::Vector3f(0, 0, 1)}}));
-  const Mesh mesh = loadMeshFile((dir.path() / "two.stl").string(), Eigen::Vector3d(0.1, 0.2, 0.3), "two");
+  dir.write(
+      "two.stl",
+      binaryStl({{Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, 1, 0)},
+                 {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(0, 1, 0), Eigen::Vector3f(0, 0, 1)}}));
+  const Mesh mesh =
+      loadMeshFile((dir.path() / "two.stl").string(), Eigen::Vector3d(0.1, 0.2, 0.3), "two");
   EXPECT_EQ(mesh.triangles.size(), 2u);
   EXPECT_EQ(mesh.vertices.size(), 4u);
   EXPECT_TRUE(highest(mesh).isApprox(Eigen::Vector3d(0.1, 0.2, 0.3), 1e-9));
@@ -246,13 +252,18 @@ TEST(MeshLoader, ReadsColladaInMetresWithZKeptUp) {
 // ---- Errors ----
 
 TEST(MeshLoader, MissingUnreadableEmptyAndCorruptFiles) {
-  EXPECT_EQ(loadError(kData + "/meshes/nope.stl"), "mesh '" + kData + "/meshes/nope.stl': file not found");
+  EXPECT_EQ(loadError(kData + "/meshes/nope.stl"),
+            "mesh '" + kData + "/meshes/nope.stl': file not found");
   EXPECT_EQ(loadError(kData + "/meshes"), "mesh '" + kData + "/meshes': not a regular file");
   EXPECT_EQ(loadError(kData + "/meshes/corrupt.stl"),
-            "mesh '" + kData + "/meshes/corrupt.stl': cannot read it as a mesh: Failed to determine "
-            "STL storage representation for " + kData + "/meshes/corrupt.stl.");
+            "mesh '" + kData +
+                "/meshes/corrupt.stl': cannot read it as a mesh: Failed to determine "
+                "STL storage representation for " +
+                kData + "/meshes/corrupt.stl.");
   // An STL with no facets.
-  EXPECT_EQ(loadError(kData + "/meshes/empty.stl").rfind("mesh '" + kData + "/meshes/empty.stl': ", 0), 0u);
+  EXPECT_EQ(
+      loadError(kData + "/meshes/empty.stl").rfind("mesh '" + kData + "/meshes/empty.stl': ", 0),
+      0u);
   TempDir dir;
   dir.write("zero.stl", "");
   EXPECT_EQ(loadError((dir.path() / "zero.stl").string()),
@@ -260,11 +271,13 @@ TEST(MeshLoader, MissingUnreadableEmptyAndCorruptFiles) {
   dir.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n");
   EXPECT_EQ(loadError((dir.path() / "points.obj").string()).rfind("mesh '", 0), 0u);
   EXPECT_EQ(loadError(kData + "/meshes/tetra.stl", Eigen::Vector3d(1, -1, 1)),
-            "mesh '" + kData + "/meshes/tetra.stl': scale must be three finite positive factors, "
-            "got [1, -1, 1]");
+            "mesh '" + kData +
+                "/meshes/tetra.stl': scale must be three finite positive factors, "
+                "got [1, -1, 1]");
   EXPECT_EQ(loadError(kData + "/meshes/tetra.stl", Eigen::Vector3d(1, std::nan(""), 1)),
-            "mesh '" + kData + "/meshes/tetra.stl': scale must be three finite positive factors, "
-            "got [1, nan, 1]");
+            "mesh '" + kData +
+                "/meshes/tetra.stl': scale must be three finite positive factors, "
+                "got [1, nan, 1]");
   // The source named in messages is the URI, with the path it resolved to.
   try {
     loadMeshFile("/x/y.stl", Eigen::Vector3d::Ones(), "package://p/y.stl");
@@ -277,7 +290,8 @@ TEST(MeshLoader, MissingUnreadableEmptyAndCorruptFiles) {
 // ---- Cache ----
 
 TEST(MeshLoader, EachFileAndScaleIsReadOnce) {
-  MeshLoader loader([](const std::string& p) { return p == "data" ? kData : std::string(); }, kData);
+  MeshLoader loader([](const std::string& p) { return p == "data" ? kData : std::string(); },
+                    kData);
   const auto a = loader.load("meshes/tetra.stl", Eigen::Vector3d::Ones());
   const auto b = loader.load("package://data/meshes/tetra.stl", Eigen::Vector3d::Ones());
   const auto c = loader.load(kData + "/meshes/../meshes/tetra.stl", Eigen::Vector3d::Ones());
@@ -331,7 +345,8 @@ TEST(MeshLoader, MeshObjectsDeriveTheirValuesFromVertices) {
   EXPECT_NEAR(turned.topOffset.z(), 0.15, 1e-7);
   EXPECT_DOUBLE_EQ(turned.horizontalRadius, 0.5);
   // The project's L block, through its package.
-  const ObjectModel block = meshObject("{shape: mesh, mesh: package://placement_samplers/meshes/l_block.stl}");
+  const ObjectModel block =
+      meshObject("{shape: mesh, mesh: package://placement_samplers/meshes/l_block.stl}");
   EXPECT_NEAR(block.horizontalRadius, std::sqrt(2.0) * 0.04, 1e-7);
   EXPECT_NEAR(block.bottomOffset.z(), -0.015, 1e-7);
 }

@@ -88,7 +88,8 @@ TEST(Mt19937_64, ReseedMidStream) {
   // Re-seeding inside the lazy part (10), between 156 and 312 (200), in a later block (400) and
   // at the boundaries themselves.
   const int before[] = {0, 1, 10, 155, 156, 157, 200, 311, 312, 313, 400, 623, 624, 625};
-  const std::uint64_t seeds[] = {0, 5489, sceneSeed(42, 7), std::numeric_limits<std::uint64_t>::max()};
+  const std::uint64_t seeds[] = {0, 5489, sceneSeed(42, 7),
+                                 std::numeric_limits<std::uint64_t>::max()};
   for (const std::uint64_t first : seeds) {
     for (const std::uint64_t second : seeds) {
       for (const int n : before) {
@@ -109,7 +110,7 @@ TEST(Mt19937_64, ReseedMidStream) {
 }
 
 TEST(Mt19937_64, Discard) {
-  const unsigned long long counts[] = {0,   1,   2,   100, 154, 155, 156, 157, 200,
+  const unsigned long long counts[] = {0,   1,   2,   100, 154, 155, 156, 157,  200,
                                        311, 312, 313, 500, 623, 624, 625, 1000, 5000};
   const int drawnBefore[] = {0, 1, 7, 155, 156, 200, 312, 400};
   for (const std::uint64_t seed : {std::uint64_t{0}, std::uint64_t{5489}, sceneSeed(1, 2)}) {

@@ -53,8 +53,8 @@ std::shared_ptr<ObjectModel> makeDisc(double radius, double bottom, double top) 
 class RandomWorld {
  public:
   explicit RandomWorld(std::uint64_t seed) : engine_(seed) {
-    const double radii[] = {0.0,  1e-7, 0.005, 0.02, 0.03,  0.03, 0.03, 0.045,
-                            0.09, 0.2,  0.57,  -0.04, 1e3,  1e200};
+    const double radii[] = {0.0,   1e-7, 0.005, 0.02, 0.03,  0.03, 0.03,
+                            0.045, 0.09, 0.2,   0.57, -0.04, 1e3,  1e200};
     for (const double r : radii) {
       objects_.push_back(makeDisc(r, -uniform(engine_, 0.0, 0.1), uniform(engine_, 0.0, 0.1)));
     }
@@ -81,8 +81,8 @@ class RandomWorld {
       centre = Eigen::Vector3d(-15.0, -15.0, 10.0);  // hide()
       scale = 5.0;
     }
-    return centre + Eigen::Vector3d(uniform(engine_, -scale, scale), uniform(engine_, -scale, scale),
-                                    uniform(engine_, -0.1, 0.1));
+    return centre + Eigen::Vector3d(uniform(engine_, -scale, scale),
+                                    uniform(engine_, -scale, scale), uniform(engine_, -0.1, 0.1));
   }
 
   /// A candidate position near @p entry: inside, on or just outside its reach.
@@ -90,7 +90,7 @@ class RandomWorld {
     const double reach = std::abs(entry.object->horizontalRadius + object.horizontalRadius);
     const double angle = uniform(engine_, 0.0, 2.0 * M_PI);
     const double distance = std::isfinite(reach) && reach < 1e6 ? reach * uniform(engine_, 0.9, 1.1)
-                                                               : uniform(engine_, 0.0, 1.0);
+                                                                : uniform(engine_, 0.0, 1.0);
     return entry.position + Eigen::Vector3d(distance * std::cos(angle), distance * std::sin(angle),
                                             uniform(engine_, -0.1, 0.1));
   }
@@ -132,7 +132,8 @@ TEST(RadiusChecker, GridsAgreeWithTheScanOnRandomScenes) {
           candidate.object = world.object();
           const PlacedEntry& target =
               entries[static_cast<std::size_t>(uniform(world.engine(), 0.0, entries.size() - 0.5))];
-          candidate.position = q % 4 == 0 ? world.position() : world.near(target, *candidate.object);
+          candidate.position =
+              q % 4 == 0 ? world.position() : world.near(target, *candidate.object);
           const std::ptrdiff_t expected = bruteForce(entries, candidate);
           ASSERT_EQ(grid.firstCollision(entries, candidate), expected)
               << "seed " << seed << " scene " << scene << " entries " << entries.size();
@@ -234,17 +235,20 @@ TEST(RadiusChecker, HugeAndNonFiniteEntriesAreAlwaysConsidered) {
   add(endless.get(), Eigen::Vector3d(0.0, 0.0, -10.0));  // far below: only low candidates hit it
   const double nan = std::numeric_limits<double>::quiet_NaN();
   add(small.get(), Eigen::Vector3d(nan, 0.0, 0.0));  // never collides, but must not break others
-  Candidate candidate{small.get(), Eigen::Vector3d(50.0, 50.0, 0.0), Eigen::Quaterniond::Identity()};
+  Candidate candidate{small.get(), Eigen::Vector3d(50.0, 50.0, 0.0),
+                      Eigen::Quaterniond::Identity()};
   EXPECT_EQ(grid.firstCollision(entries, candidate), 16);
   EXPECT_EQ(bruteForce(entries, candidate), 16);
   candidate.position = Eigen::Vector3d(0.3, 0.01, 0.0);
   EXPECT_EQ(grid.firstCollision(entries, candidate), 3);
   // A candidate as large as the world, and candidates at non-finite positions.
   const auto world = makeDisc(1e300, -0.05, 0.05);
-  const Candidate big{world.get(), Eigen::Vector3d(-7.0, 3.0, -10.0), Eigen::Quaterniond::Identity()};
+  const Candidate big{world.get(), Eigen::Vector3d(-7.0, 3.0, -10.0),
+                      Eigen::Quaterniond::Identity()};
   EXPECT_EQ(grid.firstCollision(entries, big), bruteForce(entries, big));
   for (const double bad : {nan, std::numeric_limits<double>::infinity()}) {
-    const Candidate odd{small.get(), Eigen::Vector3d(bad, 0.0, -10.0), Eigen::Quaterniond::Identity()};
+    const Candidate odd{small.get(), Eigen::Vector3d(bad, 0.0, -10.0),
+                        Eigen::Quaterniond::Identity()};
     EXPECT_EQ(grid.firstCollision(entries, odd), bruteForce(entries, odd));
   }
 }
@@ -275,7 +279,8 @@ TEST(RadiusChecker, ClearForgetsTheScene) {
     grid.added(entries, entries.size() - 1);
   }
   EXPECT_EQ(grid.firstCollision(entries, candidate), CollisionChecker::kNone);
-  const Candidate there{object.get(), Eigen::Vector3d(4.1, 4.1, 0.0), Eigen::Quaterniond::Identity()};
+  const Candidate there{object.get(), Eigen::Vector3d(4.1, 4.1, 0.0),
+                        Eigen::Quaterniond::Identity()};
   EXPECT_EQ(grid.firstCollision(entries, there), bruteForce(entries, there));
   EXPECT_NE(grid.firstCollision(entries, there), CollisionChecker::kNone);
 }

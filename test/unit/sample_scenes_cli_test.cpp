@@ -14,7 +14,8 @@
 namespace placement_samplers {
 namespace {
 
-const std::string kDefaultConfig = std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/config/default.yaml";
+const std::string kDefaultConfig =
+    std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/config/default.yaml";
 
 // A slab over the whole table: the plate never fits.
 const std::string kBlockedConfig = R"(
@@ -69,14 +70,16 @@ std::size_t count(const std::string& text, const std::string& what) {
 }
 
 TEST(SampleScenesCli, OneJsonLinePerScene) {
-  const CliRun r = run({"--config", kDefaultConfig, "--seed", "7", "--scenes", "5", "--threads", "1"});
+  const CliRun r =
+      run({"--config", kDefaultConfig, "--seed", "7", "--scenes", "5", "--threads", "1"});
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   ASSERT_EQ(r.lines.size(), 5u);
   for (std::size_t i = 0; i < r.lines.size(); ++i) {
     const std::string& line = r.lines[i];
-    EXPECT_EQ(line.rfind("{\"scene\": " + std::to_string(i) + ", \"seed\": 7, \"success\": true, "
-                         "\"message\": \"\", \"placements\": [",
+    EXPECT_EQ(line.rfind("{\"scene\": " + std::to_string(i) +
+                             ", \"seed\": 7, \"success\": true, "
+                             "\"message\": \"\", \"placements\": [",
                          0),
               0u)
         << line;
@@ -87,7 +90,8 @@ TEST(SampleScenesCli, OneJsonLinePerScene) {
 }
 
 TEST(SampleScenesCli, SameSeedSameOutput) {
-  const std::vector<std::string> args = {"--config", kDefaultConfig, "--seed", "11", "--scenes", "4"};
+  const std::vector<std::string> args = {"--config", kDefaultConfig, "--seed",
+                                         "11",       "--scenes",     "4"};
   const CliRun a = run(args);
   const CliRun b = run(args);
   EXPECT_EQ(a.status, 0);
@@ -97,8 +101,10 @@ TEST(SampleScenesCli, SameSeedSameOutput) {
 }
 
 TEST(SampleScenesCli, SceneIndependentOfScenesAndThreads) {
-  const CliRun few = run({"--config", kDefaultConfig, "--seed", "5", "--scenes", "3", "--threads", "1"});
-  const CliRun many = run({"--config", kDefaultConfig, "--seed", "5", "--scenes", "40", "--threads", "2"});
+  const CliRun few =
+      run({"--config", kDefaultConfig, "--seed", "5", "--scenes", "3", "--threads", "1"});
+  const CliRun many =
+      run({"--config", kDefaultConfig, "--seed", "5", "--scenes", "40", "--threads", "2"});
   ASSERT_EQ(few.lines.size(), 3u);
   ASSERT_EQ(many.lines.size(), 40u);
   for (std::size_t i = 0; i < few.lines.size(); ++i) {
@@ -120,10 +126,11 @@ TEST(SampleScenesCli, FailingSceneExitsOne) {
   EXPECT_EQ(r.status, 1);
   EXPECT_TRUE(r.err.empty()) << r.err;
   ASSERT_EQ(r.lines.size(), 2u);
-  EXPECT_NE(r.lines[0].find("\"success\": false, \"message\": \"could not place object 'plate' with "
-                            "sampler 'PlateSampler' in 20 attempts: 20 of them overlapped fixture "
-                            "'slab'\""),
-            std::string::npos)
+  EXPECT_NE(
+      r.lines[0].find("\"success\": false, \"message\": \"could not place object 'plate' with "
+                      "sampler 'PlateSampler' in 20 attempts: 20 of them overlapped fixture "
+                      "'slab'\""),
+      std::string::npos)
       << r.lines[0];
 }
 
@@ -132,13 +139,14 @@ TEST(SampleScenesCli, MaxAttemptsFlagOverridesTheConfiguration) {
   const CliRun r = run({"--config", config.path, "--seed", "1", "--max-attempts", "3"});
   EXPECT_EQ(r.status, 1);
   ASSERT_EQ(r.lines.size(), 1u);
-  EXPECT_NE(r.lines[0].find("in 3 attempts: 3 of them overlapped fixture 'slab'"), std::string::npos)
+  EXPECT_NE(r.lines[0].find("in 3 attempts: 3 of them overlapped fixture 'slab'"),
+            std::string::npos)
       << r.lines[0];
 }
 
 TEST(SampleScenesCli, SamplerFlagRunsOneSubSampler) {
-  const CliRun r = run({"--config", kDefaultConfig, "--seed", "3", "--scenes", "3", "--sampler",
-                     "TableSampler"});
+  const CliRun r = run(
+      {"--config", kDefaultConfig, "--seed", "3", "--scenes", "3", "--sampler", "TableSampler"});
   EXPECT_EQ(r.status, 0) << r.err;
   ASSERT_EQ(r.lines.size(), 3u);
   for (const std::string& line : r.lines) {
@@ -166,45 +174,53 @@ TEST(SampleScenesCli, BadConfigExitsTwoNamingTheFile) {
   const CliRun r = run({"--config", typo.path});
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(r.out.empty());
-  EXPECT_EQ(r.err, "sample_scenes: " + typo.path +
-                       ": samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, "
-                       "x_range, y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
-                       "ensure_valid_placement, reference_pos, z_offset, sample_args, max_attempts)\n");
+  EXPECT_EQ(r.err,
+            "sample_scenes: " + typo.path +
+                ": samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, "
+                "x_range, y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
+                "ensure_valid_placement, reference_pos, z_offset, sample_args, max_attempts)\n");
   const TempConfig broken("broken.yaml", "samplers: [1, 2\nseed: 3\n");
   const CliRun s = run({"--config", broken.path});
   EXPECT_EQ(s.status, 2);
-  EXPECT_EQ(s.err.rfind("sample_scenes: " + broken.path + ": invalid YAML at line ", 0), 0u) << s.err;
+  EXPECT_EQ(s.err.rfind("sample_scenes: " + broken.path + ": invalid YAML at line ", 0), 0u)
+      << s.err;
 }
 
 TEST(SampleScenesCli, UsageErrorsExitTwo) {
   const CliRun unknown = run({"--config", kDefaultConfig, "--bogus", "1"});
   EXPECT_EQ(unknown.status, 2);
   EXPECT_TRUE(unknown.out.empty());
-  EXPECT_EQ(unknown.err.rfind("sample_scenes: unknown argument '--bogus'\nusage: sample_scenes", 0), 0u)
+  EXPECT_EQ(unknown.err.rfind("sample_scenes: unknown argument '--bogus'\nusage: sample_scenes", 0),
+            0u)
       << unknown.err;
   const CliRun trailing = run({"--config", kDefaultConfig, "--bogus"});
   EXPECT_EQ(trailing.status, 2);
-  EXPECT_EQ(trailing.err.rfind("sample_scenes: unknown argument '--bogus'\n", 0), 0u) << trailing.err;
+  EXPECT_EQ(trailing.err.rfind("sample_scenes: unknown argument '--bogus'\n", 0), 0u)
+      << trailing.err;
   const CliRun noValue = run({"--config", kDefaultConfig, "--seed"});
   EXPECT_EQ(noValue.status, 2);
   EXPECT_EQ(noValue.err.rfind("sample_scenes: --seed: missing value\n", 0), 0u) << noValue.err;
   const CliRun noConfig = run({"--seed", "1"});
   EXPECT_EQ(noConfig.status, 2);
-  EXPECT_EQ(noConfig.err.rfind("sample_scenes: --config FILE is required\n", 0), 0u) << noConfig.err;
+  EXPECT_EQ(noConfig.err.rfind("sample_scenes: --config FILE is required\n", 0), 0u)
+      << noConfig.err;
   const CliRun badNumber = run({"--config", kDefaultConfig, "--scenes", "-3"});
   EXPECT_EQ(badNumber.status, 2);
-  EXPECT_EQ(badNumber.err.rfind("sample_scenes: --scenes: expected a non-negative integer, got '-3'\n", 0),
+  EXPECT_EQ(badNumber.err.rfind(
+                "sample_scenes: --scenes: expected a non-negative integer, got '-3'\n", 0),
             0u)
       << badNumber.err;
   const CliRun tooLarge = run({"--config", kDefaultConfig, "--max-attempts", "4294967296"});
   EXPECT_EQ(tooLarge.status, 2);
-  EXPECT_EQ(tooLarge.err.rfind(
-                "sample_scenes: --max-attempts: 4294967296 is out of range (at most 4294967295)\n", 0),
-            0u)
+  EXPECT_EQ(
+      tooLarge.err.rfind(
+          "sample_scenes: --max-attempts: 4294967296 is out of range (at most 4294967295)\n", 0),
+      0u)
       << tooLarge.err;
   const CliRun badMode = run({"--config", kDefaultConfig, "--collision-check", "exact"});
   EXPECT_EQ(badMode.status, 2);
-  EXPECT_NE(badMode.err.find("expected radius, fcl or radius_and_fcl, got 'exact'"), std::string::npos)
+  EXPECT_NE(badMode.err.find("expected radius, fcl or radius_and_fcl, got 'exact'"),
+            std::string::npos)
       << badMode.err;
 }
 

@@ -96,8 +96,8 @@ TEST(SceneGenerator, SamplesTheConfiguredScene) {
   EXPECT_EQ(names, (std::vector<std::string>{"plate", "cup", "cube", "can", "ball", "pill"}));
   const ObjectPlacement* plate = findPlacement(scene.placements, "plate");
   const ObjectPlacement* cup = findPlacement(scene.placements, "cup");
-  EXPECT_DOUBLE_EQ(cup->position.z(),
-                   plate->position.z() + plate->object->topOffset.z() - cup->object->bottomOffset.z());
+  EXPECT_DOUBLE_EQ(cup->position.z(), plate->position.z() + plate->object->topOffset.z() -
+                                          cup->object->bottomOffset.z());
   EXPECT_TRUE(findPlacement(scene.placements, "pill")->hidden);
 }
 
@@ -120,15 +120,18 @@ TEST(SceneGenerator, UnknownReference) {
   EXPECT_EQ(requestError(generator, request), "reference_point must be finite");
   // A request fixture is a valid reference.
   request.reference = Reference::named("box");
-  request.fixtures.push_back(boxFixture("box", Eigen::Vector3d(0.1, 0.1, 0.1), Eigen::Vector3d(1, 1, 0)));
+  request.fixtures.push_back(
+      boxFixture("box", Eigen::Vector3d(0.1, 0.1, 0.1), Eigen::Vector3d(1, 1, 0)));
   EXPECT_NO_THROW(generator.prepare(request));
 }
 
 TEST(SceneGenerator, FixtureErrors) {
   const SceneGenerator generator = makeGenerator();
   SampleRequest request;
-  request.fixtures.push_back(boxFixture("cube", Eigen::Vector3d(0.1, 0.1, 0.1), Eigen::Vector3d::Zero()));
-  EXPECT_EQ(requestError(generator, request), "fixture 'cube': the name is already a configured object");
+  request.fixtures.push_back(
+      boxFixture("cube", Eigen::Vector3d(0.1, 0.1, 0.1), Eigen::Vector3d::Zero()));
+  EXPECT_EQ(requestError(generator, request),
+            "fixture 'cube': the name is already a configured object");
 
   request.fixtures = {boxFixture("table", Eigen::Vector3d(0.1, 0.1, 0.1), Eigen::Vector3d::Zero())};
   EXPECT_EQ(requestError(generator, request), "fixture 'table': the name is used twice");
@@ -148,7 +151,8 @@ TEST(SceneGenerator, FixtureErrors) {
   EXPECT_EQ(requestError(generator, request),
             "fixture 'a': orientation must be a finite unit quaternion");
 
-  request.fixtures = {boxFixture("a", Eigen::Vector3d(0.1, 0.1, 0.1), Eigen::Vector3d(INFINITY, 0, 0))};
+  request.fixtures = {
+      boxFixture("a", Eigen::Vector3d(0.1, 0.1, 0.1), Eigen::Vector3d(INFINITY, 0, 0))};
   EXPECT_EQ(requestError(generator, request), "fixture 'a': position must be finite");
 
   request.fixtures = {boxFixture("a", Eigen::Vector3d(0.1, -0.1, 0.1), Eigen::Vector3d::Zero())};
@@ -198,8 +202,8 @@ TEST(SceneGenerator, RequestFixturesAreAvoided) {
   request.fixtures.push_back(
       boxFixture("block", Eigen::Vector3d(0.1, 0.1, 0.5), Eigen::Vector3d(0.0, 0.0, 1.0)));
   const PreparedRequest prepared = generator.prepare(request);
-  const PlacedEntry block{"block", prepared.fixtures[1].object.get(), Eigen::Vector3d(0.0, 0.0, 1.0),
-                          Eigen::Quaterniond::Identity(), true};
+  const PlacedEntry block{"block", prepared.fixtures[1].object.get(),
+                          Eigen::Vector3d(0.0, 0.0, 1.0), Eigen::Quaterniond::Identity(), true};
   for (const SceneResult& scene : generator.sampleScenes(prepared, 11, 200, 1)) {
     ASSERT_TRUE(scene.success) << scene.message;
     EXPECT_EQ(findPlacement(scene.placements, "block"), nullptr);
@@ -256,11 +260,13 @@ samplers:
   // A point: no top offset.
   request.reference = Reference::at(Eigen::Vector3d(-1, -1, 0.5));
   request.onTop = true;
-  const ObjectPlacement ball = generator.sampleScene(generator.prepare(request), 3, 0).placements.at(0);
+  const ObjectPlacement ball =
+      generator.sampleScene(generator.prepare(request), 3, 0).placements.at(0);
   EXPECT_LE(std::abs(ball.position.x() + 1.0), 0.07 + 1e-12);
   EXPECT_DOUBLE_EQ(ball.position.z(), 0.01 + 0.5 + 0.03);
   // Nothing given: the sampler's reference_pos.
-  const ObjectPlacement own = generator.sampleScene(generator.prepare(SampleRequest()), 3, 0).placements.at(0);
+  const ObjectPlacement own =
+      generator.sampleScene(generator.prepare(SampleRequest()), 3, 0).placements.at(0);
   EXPECT_LE(std::abs(own.position.x() - 9.0), 0.07 + 1e-12);
 }
 
@@ -346,9 +352,11 @@ TEST(SceneGenerator, TimeLimit) {
   const SceneGenerator generator = makeGenerator();
   SampleRequest request;
   request.maxSeconds = -1.0;
-  EXPECT_EQ(requestError(generator, request), "the time limit must be a non-negative number of seconds");
+  EXPECT_EQ(requestError(generator, request),
+            "the time limit must be a non-negative number of seconds");
   request.maxSeconds = NAN;
-  EXPECT_EQ(requestError(generator, request), "the time limit must be a non-negative number of seconds");
+  EXPECT_EQ(requestError(generator, request),
+            "the time limit must be a non-negative number of seconds");
   // A blocked scene, a huge attempt limit and a time limit already passed when sampling starts.
   request.maxSeconds = 1e-9;
   request.maxAttempts = 100000000;
@@ -391,7 +399,8 @@ TEST(SceneGenerator, SceneIndependentOfCountAndThreads) {
       test::expectSamePlacements(one[i].placements, fewer[i].placements);
     }
   }
-  test::expectSamePlacements(one[17].placements, generator.sampleScene(prepared, seed, 17).placements);
+  test::expectSamePlacements(one[17].placements,
+                             generator.sampleScene(prepared, seed, 17).placements);
   // Scenes of one request differ from each other.
   EXPECT_TRUE(test::anyPositionDiffers(one[0].placements, one[1].placements));
 }

@@ -20,17 +20,16 @@
 namespace placement_samplers {
 namespace {
 
-using test::findPlacement;
 using test::configError;
+using test::findPlacement;
 using test::makeBox;
 using test::makeCylinder;
 using test::makeSphere;
 using test::TestScene;
 
-std::shared_ptr<UniformRandomSampler> uniform(const std::string& name,
-                                              const std::vector<ObjectPtr>& objects,
-                                              double halfWidth = 0.3,
-                                              const Eigen::Vector3d& referencePos = Eigen::Vector3d::Zero()) {
+std::shared_ptr<UniformRandomSampler> uniform(
+    const std::string& name, const std::vector<ObjectPtr>& objects, double halfWidth = 0.3,
+    const Eigen::Vector3d& referencePos = Eigen::Vector3d::Zero()) {
   UniformSamplerParams p;
   p.xRange = Eigen::Vector2d(-halfWidth, halfWidth);
   p.yRange = Eigen::Vector2d(-halfWidth, halfWidth);
@@ -78,8 +77,10 @@ TEST(SequentialCompositeSampler, RunsSubSamplersInOrder) {
 
 TEST(SequentialCompositeSampler, LaterSamplersAvoidEarlierObjects) {
   SequentialCompositeSampler root("root");
-  root.appendSampler(uniform("A", {makeCylinder("a1", 0.05, 0.1), makeCylinder("a2", 0.05, 0.1)}, 0.25));
-  root.appendSampler(uniform("B", {makeCylinder("b1", 0.05, 0.1), makeCylinder("b2", 0.05, 0.1)}, 0.25));
+  root.appendSampler(
+      uniform("A", {makeCylinder("a1", 0.05, 0.1), makeCylinder("a2", 0.05, 0.1)}, 0.25));
+  root.appendSampler(
+      uniform("B", {makeCylinder("b1", 0.05, 0.1), makeCylinder("b2", 0.05, 0.1)}, 0.25));
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
     TestScene scene(seed);
     ASSERT_TRUE(root.sample(scene.context, Reference::byDefault(), true));
@@ -106,7 +107,8 @@ TEST(SequentialCompositeSampler, SampleArgsReferenceStacksOnEarlierObject) {
     const ObjectPlacement* c = findPlacement(scene.context.placements(), "cup");
     ASSERT_TRUE(p != nullptr && c != nullptr);
     // z = ref.z + ref.top - bottom (z_offset 0); x, y around the plate.
-    EXPECT_DOUBLE_EQ(c->position.z(), p->position.z() + plate->topOffset.z() - cup->bottomOffset.z());
+    EXPECT_DOUBLE_EQ(c->position.z(),
+                     p->position.z() + plate->topOffset.z() - cup->bottomOffset.z());
     EXPECT_LE(std::abs(c->position.x() - p->position.x()), 0.05 - 0.04 + 1e-12);
     EXPECT_LE(std::abs(c->position.y() - p->position.y()), 0.05 - 0.04 + 1e-12);
     // Stacked over the plate it overlaps in x-y, which the one-sided test allows.
@@ -314,7 +316,8 @@ TEST(SequentialCompositeSampler, NestedCompositePassesItsArgsDown) {
   auto inner = std::make_shared<SequentialCompositeSampler>("Inner");
   auto cupSampler = uniform("Cup", {cup}, 0.05);
   inner->appendSampler(cupSampler);
-  inner->appendSampler(uniform("Spoon", {spoon}, 0.05), args(Reference::at(Eigen::Vector3d(2, 2, 0)), true));
+  inner->appendSampler(uniform("Spoon", {spoon}, 0.05),
+                       args(Reference::at(Eigen::Vector3d(2, 2, 0)), true));
   root.appendSampler(inner, args(Reference::named("plate"), true));
   EXPECT_EQ(names(root.objects()), (std::vector<std::string>{"plate", "cup", "spoon"}));
 

@@ -28,8 +28,7 @@ void expectBounds(const Bounds& b, double bottom, double top, double radius) {
 
 TEST(Shape, BoxUpright) {
   const Shape box = Shape::box(Eigen::Vector3d(0.2, 0.4, 0.1));
-  expectBounds(shapeBounds(box, Eigen::Quaterniond::Identity()), -0.05, 0.05,
-               std::hypot(0.1, 0.2));
+  expectBounds(shapeBounds(box, Eigen::Quaterniond::Identity()), -0.05, 0.05, std::hypot(0.1, 0.2));
 }
 
 TEST(Shape, BoxRotatedAboutZKeepsHalfDiagonal) {
@@ -110,8 +109,8 @@ TEST(Shape, OffsetCylinderTakesTheFartherRim) {
 TEST(Shape, SphereIgnoresOrientation) {
   const Shape sphere = Shape::sphere(0.04);
   expectBounds(shapeBounds(sphere, Eigen::Quaterniond::Identity()), -0.04, 0.04, 0.04);
-  expectBounds(shapeBounds(sphere, about(0.7, Eigen::Vector3d(1, 2, 3).normalized())), -0.04,
-               0.04, 0.04);
+  expectBounds(shapeBounds(sphere, about(0.7, Eigen::Vector3d(1, 2, 3).normalized())), -0.04, 0.04,
+               0.04);
 }
 
 TEST(Shape, OffsetSphereFollowsTheObjectFrame) {
@@ -132,8 +131,8 @@ TEST(Shape, CapsuleUprightAndTilted) {
   expectBounds(shapeBounds(capsule, Eigen::Quaterniond::Identity()), -(half + r), half + r, r);
   // Tilted by t: the cap centres move to height (L/2) cos t and radius (L/2) sin t.
   const double t = 0.5;
-  expectBounds(shapeBounds(capsule, about(t, Eigen::Vector3d::UnitY())),
-               -(half * std::cos(t) + r), half * std::cos(t) + r, half * std::sin(t) + r);
+  expectBounds(shapeBounds(capsule, about(t, Eigen::Vector3d::UnitY())), -(half * std::cos(t) + r),
+               half * std::cos(t) + r, half * std::sin(t) + r);
   // Lying: as high as its radius, as wide as half its total length.
   expectBounds(shapeBounds(capsule, about(M_PI / 2.0, Eigen::Vector3d::UnitX())), -r, r, half + r);
 }
@@ -142,8 +141,8 @@ TEST(Shape, UnionOfShapes) {
   // A tall thin box and a wide sphere above it: the union takes the extreme of each bound.
   Shape sphere = Shape::sphere(0.1);
   sphere.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.3);
-  const Bounds b =
-      shapesBounds({Shape::box(Eigen::Vector3d(0.02, 0.02, 0.4)), sphere}, Eigen::Quaterniond::Identity());
+  const Bounds b = shapesBounds({Shape::box(Eigen::Vector3d(0.02, 0.02, 0.4)), sphere},
+                                Eigen::Quaterniond::Identity());
   expectBounds(b, -0.2, 0.4, 0.1);
 }
 
@@ -163,8 +162,8 @@ TEST(Shape, TypeNames) {
 TEST(ObjectModel, DerivesOffsetsUnderInitOrientation) {
   const double r = 0.03;
   const double length = 0.2;
-  const ObjectModel can = makeObject("can", {Shape::cylinder(r, length)},
-                                     about(M_PI / 2.0, Eigen::Vector3d::UnitX()));
+  const ObjectModel can =
+      makeObject("can", {Shape::cylinder(r, length)}, about(M_PI / 2.0, Eigen::Vector3d::UnitX()));
   EXPECT_EQ(can.name, "can");
   // Offsets are vectors along z, as robosuite's bottom_offset / top_offset.
   EXPECT_NEAR((can.bottomOffset - Eigen::Vector3d(0, 0, -r)).norm(), 0.0, kTol);
@@ -189,9 +188,8 @@ TEST(ObjectModel, OverridesWin) {
   overrides.bottomOffset = Eigen::Vector3d(0.0, 0.0, -0.3);
   overrides.hasTopOffset = true;
   overrides.topOffset = Eigen::Vector3d(0.0, 0.0, 0.4);
-  const ObjectModel cube =
-      makeObject("cube", {Shape::box(Eigen::Vector3d(0.1, 0.1, 0.1))}, Eigen::Quaterniond::Identity(),
-                 overrides);
+  const ObjectModel cube = makeObject("cube", {Shape::box(Eigen::Vector3d(0.1, 0.1, 0.1))},
+                                      Eigen::Quaterniond::Identity(), overrides);
   EXPECT_EQ(cube.bottomOffset, overrides.bottomOffset);
   EXPECT_EQ(cube.topOffset, overrides.topOffset);
   EXPECT_EQ(cube.horizontalRadius, 0.5);

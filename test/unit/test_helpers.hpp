@@ -64,7 +64,7 @@ struct TestScene {
 
 /// The placement of @p name, or nullptr.
 inline const ObjectPlacement* findPlacement(const std::vector<ObjectPlacement>& placements,
-                                      const std::string& name) {
+                                            const std::string& name) {
   for (const ObjectPlacement& p : placements) {
     if (p.name == name) {
       return &p;
@@ -74,7 +74,8 @@ inline const ObjectPlacement* findPlacement(const std::vector<ObjectPlacement>& 
 }
 
 /// Bit-for-bit equality of two placement lists.
-inline void expectSamePlacements(const std::vector<ObjectPlacement>& a, const std::vector<ObjectPlacement>& b) {
+inline void expectSamePlacements(const std::vector<ObjectPlacement>& a,
+                                 const std::vector<ObjectPlacement>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].name, b[i].name);
@@ -92,7 +93,8 @@ inline void expectSamePlacements(const std::vector<ObjectPlacement>& a, const st
 }
 
 /// True when any position coordinate of the two lists differs.
-inline bool anyPositionDiffers(const std::vector<ObjectPlacement>& a, const std::vector<ObjectPlacement>& b) {
+inline bool anyPositionDiffers(const std::vector<ObjectPlacement>& a,
+                               const std::vector<ObjectPlacement>& b) {
   if (a.size() != b.size()) {
     return true;
   }

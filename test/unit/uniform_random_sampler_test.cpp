@@ -33,9 +33,10 @@ UniformSamplerParams region(double xMin, double xMax, double yMin, double yMax) 
 
 /// Places one object @p n times (a fresh scene each time, one engine) and returns the
 /// placements.
-std::vector<ObjectPlacement> sampleMany(const UniformRandomSampler& sampler, int n, std::uint64_t seed,
-                                  const Reference& reference = Reference::byDefault(),
-                                  bool onTop = true) {
+std::vector<ObjectPlacement> sampleMany(const UniformRandomSampler& sampler, int n,
+                                        std::uint64_t seed,
+                                        const Reference& reference = Reference::byDefault(),
+                                        bool onTop = true) {
   TestScene scene(seed);
   std::vector<ObjectPlacement> out;
   out.reserve(n);
@@ -163,7 +164,8 @@ TEST(UniformRandomSampler, FixedRotationIsExact) {
 TEST(UniformRandomSampler, RotationAboutEachWorldAxisAfterInitOrientation) {
   // q = AngleAxis(angle, axis) * init: the sampled rotation is a world-axis rotation applied
   // after the initial one, so q * init^-1 is a rotation about that axis.
-  const Eigen::Quaterniond init(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d(1, 1, 0).normalized()));
+  const Eigen::Quaterniond init(
+      Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d(1, 1, 0).normalized()));
   const ObjectPtr cube = makeBox("cube", Eigen::Vector3d(0.02, 0.04, 0.06), init);
   for (int axis = 0; axis < 3; ++axis) {
     UniformSamplerParams p = region(-0.5, 0.5, -0.5, 0.5);
@@ -298,8 +300,8 @@ TEST(UniformRandomSampler, TouchingCountsAsOverlap) {
   const PlacedEntry other{"a", a.get(), Eigen::Vector3d(1.0, 2.0, 0.0),
                           Eigen::Quaterniond::Identity(), false};
   // Distance exactly r1 + r2 = 0.75 (all values exact in binary), same z.
-  EXPECT_TRUE(radiusOverlap(other, Candidate{b.get(), Eigen::Vector3d(1.75, 2.0, 0.0),
-                                             Eigen::Quaterniond::Identity()}));
+  EXPECT_TRUE(radiusOverlap(
+      other, Candidate{b.get(), Eigen::Vector3d(1.75, 2.0, 0.0), Eigen::Quaterniond::Identity()}));
   EXPECT_FALSE(radiusOverlap(other, Candidate{b.get(), Eigen::Vector3d(1.75 + 1e-9, 2.0, 0.0),
                                               Eigen::Quaterniond::Identity()}));
 }
@@ -310,14 +312,14 @@ TEST(UniformRandomSampler, ZTestIsOneSided) {
   const PlacedEntry below{"a", a.get(), Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(),
                           false};
   // Same x-y; b's bottom exactly on a's top (z - z_o = top_o - bottom = 0.75): touching.
-  EXPECT_TRUE(radiusOverlap(below, Candidate{b.get(), Eigen::Vector3d(0.0, 0.0, 0.75),
-                                             Eigen::Quaterniond::Identity()}));
+  EXPECT_TRUE(radiusOverlap(
+      below, Candidate{b.get(), Eigen::Vector3d(0.0, 0.0, 0.75), Eigen::Quaterniond::Identity()}));
   // Above it: passes, which is what allows stacking.
-  EXPECT_FALSE(radiusOverlap(below, Candidate{b.get(), Eigen::Vector3d(0.0, 0.0, 0.76),
-                                              Eigen::Quaterniond::Identity()}));
+  EXPECT_FALSE(radiusOverlap(
+      below, Candidate{b.get(), Eigen::Vector3d(0.0, 0.0, 0.76), Eigen::Quaterniond::Identity()}));
   // Far below it: still an overlap, the test only looks one way.
-  EXPECT_TRUE(radiusOverlap(below, Candidate{b.get(), Eigen::Vector3d(0.0, 0.0, -10.0),
-                                             Eigen::Quaterniond::Identity()}));
+  EXPECT_TRUE(radiusOverlap(
+      below, Candidate{b.get(), Eigen::Vector3d(0.0, 0.0, -10.0), Eigen::Quaterniond::Identity()}));
 }
 
 TEST(UniformRandomSampler, StacksOnAFixtureItOverlapsInXY) {
@@ -439,10 +441,12 @@ TEST(UniformRandomSampler, InvalidParametersThrow) {
             "sampler 'S': max_attempts must be at least 1");
   p = region(-0.1, 0.1, -0.1, 0.1);
   p.rotation = RotationSpec::fixed(NAN);
-  EXPECT_EQ(configError([&] { UniformRandomSampler("S", p); }), "sampler 'S': rotation must be finite");
+  EXPECT_EQ(configError([&] { UniformRandomSampler("S", p); }),
+            "sampler 'S': rotation must be finite");
   p = region(-0.1, 0.1, -0.1, 0.1);
   p.zOffset = INFINITY;
-  EXPECT_EQ(configError([&] { UniformRandomSampler("S", p); }), "sampler 'S': z_offset must be finite");
+  EXPECT_EQ(configError([&] { UniformRandomSampler("S", p); }),
+            "sampler 'S': z_offset must be finite");
   p = region(-0.1, 0.1, -0.1, 0.1);
   p.referencePos.x() = NAN;
   EXPECT_EQ(configError([&] { UniformRandomSampler("S", p); }),
@@ -472,7 +476,9 @@ TEST(UniformRandomSampler, EmptyShrunkRegionThrows) {
 
 TEST(UniformRandomSampler, DuplicateObjectThrows) {
   const ObjectPtr ball = makeSphere("ball", 0.05);
-  EXPECT_EQ(configError([&] { UniformRandomSampler("S", region(-1, 1, -1, 1), {ball, ball}); }),
+  EXPECT_EQ(configError([&] {
+              UniformRandomSampler("S", region(-1, 1, -1, 1), {ball, ball});
+            }),
             "sampler 'S': object 'ball' is already in this sampler");
   UniformRandomSampler sampler("S", region(-1, 1, -1, 1), {ball});
   // Another model with the same name is the same object as far as names go.

@@ -157,7 +157,8 @@ TEST(UrdfGeometry, ExampleUrdfs) {
   EXPECT_NEAR(bin.topOffset.z(), 0.1, 1e-12);
   EXPECT_NEAR(bin.horizontalRadius, std::sqrt(0.2 * 0.2 + 0.25 * 0.25), 1e-12);
 
-  const ObjectModel table = configObject("{urdf_file: package://placement_samplers/urdf/table.urdf}");
+  const ObjectModel table =
+      configObject("{urdf_file: package://placement_samplers/urdf/table.urdf}");
   EXPECT_EQ(table.shapes.size(), 5u);
   EXPECT_NEAR(table.bottomOffset.z(), -0.74, 1e-12);
   EXPECT_NEAR(table.topOffset.z(), 0.0, 1e-12);
@@ -167,7 +168,8 @@ TEST(UrdfGeometry, ExampleUrdfs) {
   EXPECT_NEAR(leg.bottomOffset.z(), -0.7, 1e-12);
   EXPECT_NEAR(leg.topOffset.z(), 0.0, 1e-12);
 
-  const ObjectModel block = configObject("{urdf_file: package://placement_samplers/urdf/l_block.urdf}");
+  const ObjectModel block =
+      configObject("{urdf_file: package://placement_samplers/urdf/l_block.urdf}");
   ASSERT_EQ(block.shapes.size(), 1u);
   EXPECT_EQ(block.shapes[0].type, ShapeType::Mesh);
   EXPECT_NEAR(block.bottomOffset.z(), -0.015, 1e-7);
@@ -239,11 +241,14 @@ TEST(UrdfGeometry, ConfigurationErrors) {
   EXPECT_EQ(configError("{urdf_file: urdf/missing_mesh.urdf}"),
             "objects.part.urdf_file: object 'part': urdf_file 'urdf/missing_mesh.urdf' (" + kData +
                 "/urdf/missing_mesh.urdf): link 'part', collision 0: mesh "
-                "'../meshes/does_not_exist.stl' (" + kData + "/meshes/does_not_exist.stl): file "
+                "'../meshes/does_not_exist.stl' (" +
+                kData +
+                "/meshes/does_not_exist.stl): file "
                 "not found");
-  EXPECT_EQ(configError("{urdf_file: urdf/no_collision.urdf}"),
-            "objects.part.urdf_file: object 'part': urdf_file 'urdf/no_collision.urdf' (" + kData +
-                "/urdf/no_collision.urdf): no collision geometry in robot 'no_collision' (2 links)");
+  EXPECT_EQ(
+      configError("{urdf_file: urdf/no_collision.urdf}"),
+      "objects.part.urdf_file: object 'part': urdf_file 'urdf/no_collision.urdf' (" + kData +
+          "/urdf/no_collision.urdf): no collision geometry in robot 'no_collision' (2 links)");
   // The build names the object under its own key.
   try {
     buildSceneConfig(parseYaml("objects:\n  crate: {urdf_file: urdf/malformed.urdf}\n", "c.yaml"),
@@ -251,8 +256,8 @@ TEST(UrdfGeometry, ConfigurationErrors) {
     FAIL() << "no error";
   } catch (const ConfigError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("objects.crate.urdf_file: object 'crate': urdf_file "
-                                          "'urdf/malformed.urdf' (" + kData +
-                                              "/urdf/malformed.urdf): malformed URDF: ",
+                                          "'urdf/malformed.urdf' (" +
+                                              kData + "/urdf/malformed.urdf): malformed URDF: ",
                                           0),
               0u)
         << e.what();
@@ -262,7 +267,8 @@ TEST(UrdfGeometry, ConfigurationErrors) {
 // ---- Errors of the URDF itself ----
 
 TEST(UrdfGeometry, MalformedDocuments) {
-  EXPECT_EQ(fileError("malformed.urdf").rfind("malformed URDF: ", 0), 0u) << fileError("malformed.urdf");
+  EXPECT_EQ(fileError("malformed.urdf").rfind("malformed URDF: ", 0), 0u)
+      << fileError("malformed.urdf");
   EXPECT_EQ(urdfError(""), "malformed URDF: Error document empty.");
   EXPECT_EQ(urdfError("<notarobot/>"),
             "malformed URDF: Could not find the 'robot' element in the xml file");
@@ -314,14 +320,17 @@ TEST(UrdfGeometry, MissingUnreadableAndEmptyMeshes) {
   EXPECT_EQ(fileError("corrupt_mesh.urdf"),
             "link 'part', collision 0: mesh '../meshes/corrupt.stl' (" + kData +
                 "/meshes/corrupt.stl): cannot read it as a mesh: Failed to determine STL storage "
-                "representation for " + kData + "/meshes/corrupt.stl.");
-  EXPECT_EQ(fileError("empty_mesh.urdf").rfind("link 'part', collision 0: mesh '../meshes/empty.stl' (" +
-                                                   kData + "/meshes/empty.stl): ",
-                                               0),
+                "representation for " +
+                kData + "/meshes/corrupt.stl.");
+  EXPECT_EQ(fileError("empty_mesh.urdf")
+                .rfind("link 'part', collision 0: mesh '../meshes/empty.stl' (" + kData +
+                           "/meshes/empty.stl): ",
+                       0),
             0u)
       << fileError("empty_mesh.urdf");
-  EXPECT_EQ(urdfError(oneLink("<geometry><mesh filename='../meshes'/></geometry>")),
-            "link 'base', collision 0: mesh '../meshes' (" + kData + "/meshes): not a regular file");
+  EXPECT_EQ(
+      urdfError(oneLink("<geometry><mesh filename='../meshes'/></geometry>")),
+      "link 'base', collision 0: mesh '../meshes' (" + kData + "/meshes): not a regular file");
 }
 
 TEST(UrdfGeometry, ReadTextFileErrors) {

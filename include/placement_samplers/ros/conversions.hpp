@@ -17,7 +17,8 @@ namespace ros_interface {
 
 /// Every conversion between the core types and the messages, in one place.
 
-geometry_msgs::Pose toPoseMsg(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation);
+geometry_msgs::Pose toPoseMsg(const Eigen::Vector3d& position,
+                              const Eigen::Quaterniond& orientation);
 
 /// A unit quaternion from a message.
 /// @throw RequestError naming @p field when it is not finite or not unit (within 1e-3)

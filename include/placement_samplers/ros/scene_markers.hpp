@@ -16,7 +16,8 @@ namespace ros_interface {
 /// out.
 visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
                                                  const SceneResult& scene,
-                                                 const std::string& frameId, const ros::Time& stamp);
+                                                 const std::string& frameId,
+                                                 const ros::Time& stamp);
 
 }  // namespace ros_interface
 }  // namespace placement_samplers
