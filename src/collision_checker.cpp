@@ -7,6 +7,7 @@
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/fcl_checker.hpp"
+#include "radius_scan.hpp"
 
 namespace placement_samplers {
 
@@ -254,7 +255,10 @@ struct RadiusChecker::Grid {
   }
 };
 
-RadiusChecker::RadiusChecker(std::size_t scanLimit) : scanLimit_(scanLimit) {}
+RadiusChecker::RadiusChecker(std::size_t scanLimit)
+    : scanLimit_(scanLimit),
+      columns_(std::make_unique<detail::RadiusColumns>()),
+      firstOverlap_(detail::scanKernel(detail::bestScanKernel())) {}
 RadiusChecker::~RadiusChecker() = default;
 
 void RadiusChecker::clear() {
@@ -265,6 +269,7 @@ void RadiusChecker::clear() {
   lastGrid_ = nullptr;
   unbounded_.clear();
   items_.clear();
+  columns_->clear();
   gridMode_ = false;
 }
 
@@ -279,6 +284,8 @@ void RadiusChecker::added(const std::vector<PlacedEntry>& entries, std::size_t i
   const PlacedEntry& entry = entries[index];
   items_.push_back(Item{entry.position.x(), entry.position.y(), entry.position.z(),
                         entry.object->horizontalRadius, entry.object->topOffset.z()});
+  columns_->push(entry.position.x(), entry.position.y(), entry.position.z(),
+                 entry.object->horizontalRadius, entry.object->topOffset.z());
   if (gridMode_) {
     indexEntry(index);
   } else if (items_.size() > scanLimit_) {
@@ -341,12 +348,9 @@ std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& ent
   if (!gridMode_ || !std::isfinite(p.x) || !std::isfinite(p.y) ||
       !(std::abs(p.radius) < kHugeRadius)) {
     // Few entries, or a candidate no range of cells can bound: the scan, in index order.
-    for (std::size_t i = 0; i < n; ++i) {
-      if (items_[i].overlaps(p)) {
-        return static_cast<std::ptrdiff_t>(i);
-      }
-    }
-    return kNone;
+    const std::size_t i =
+        firstOverlap_(*columns_, detail::RadiusProbe{p.x, p.y, p.z, p.radius, p.bottom});
+    return i < n ? static_cast<std::ptrdiff_t>(i) : kNone;
   }
   const auto none = static_cast<std::int32_t>(n);
   std::int32_t best = none;

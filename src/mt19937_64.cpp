@@ -1,5 +1,7 @@
 #include "placement_samplers/mt19937_64.hpp"
 
+#include <algorithm>
+
 namespace placement_samplers {
 namespace {
 
@@ -10,6 +12,8 @@ constexpr std::uint64_t kMatrixA = 0xB5026F5AA96619E9ULL;
 constexpr std::uint64_t kUpperMask = ~std::uint64_t{0} << 31;  // r = 31
 constexpr std::uint64_t kLowerMask = ~kUpperMask;
 constexpr std::uint64_t kSeedMultiplier = 6364136223846793005ULL;
+/// Words regenerated per call in the first block after a seed.
+constexpr std::size_t kLazyStep = 4;
 
 /// The new value of a word from the word itself, the next one and the one m ahead (mod n).
 /// Branch-free: libstdc++'s (y & 1) ? a : 0 becomes a jump that mispredicts half the time.
@@ -51,11 +55,15 @@ void Mt19937_64::prepareNext() {
     index_ = 0;
     ready_ = kN;
   } else if (index_ < kHalf) {
-    // First block after seed(): new word index_ from old words index_, index_ + 1 and
-    // index_ + kM, which the seed chain must reach first.
-    extendSeed(index_ + kM);
-    state_[index_] = twistWord(state_[index_], state_[index_ + 1], state_[index_ + kM]);
-    ready_ = index_ + 1;
+    // First block after seed(): new word k from old words k, k + 1 and k + kM, which the seed
+    // chain must reach first. Four words at a time: one call per four draws, and a scene
+    // drawing three numbers (Lift) still extends the chain only as far as it needs.
+    const std::size_t end = std::min(index_ + kLazyStep, kHalf);
+    extendSeed(end - 1 + kM);
+    for (std::size_t k = index_; k < end; ++k) {
+      state_[k] = twistWord(state_[k], state_[k + 1], state_[k + kM]);
+    }
+    ready_ = end;
   } else {
     // index_ == kHalf in the first block: the chain is complete (word kHalf - 1 needed word
     // kN - 1); finish the regeneration.

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/sin_cos.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -130,8 +131,13 @@ Eigen::Quaterniond UniformRandomSampler::sampleOrientation(Engine& engine,
   } else if (params_.rotation.kind == RotationSpec::Kind::Range) {
     angle = uniformOrPoint(engine, params_.rotation.low, params_.rotation.high);
   }
-  // A world-axis rotation applied after the initial orientation.
-  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis_)) * object.initOrientation;
+  // A world-axis rotation applied after the initial orientation; Eigen's AngleAxis conversion,
+  // with our sinCos.
+  double s = 0.0;
+  double c = 0.0;
+  sinCos(0.5 * angle, s, c);
+  return Eigen::Quaterniond(c, s * axis_.x(), s * axis_.y(), s * axis_.z()) *
+         object.initOrientation;
 }
 
 bool UniformRandomSampler::sample(SampleContext& context, const Reference& reference,

@@ -11,6 +11,11 @@
 
 namespace placement_samplers {
 
+namespace detail {
+class RadiusColumns;
+struct RadiusProbe;
+}  // namespace detail
+
 /// Something already in the scene: a fixture or an object placed earlier in the scene.
 struct PlacedEntry {
   std::string name;
@@ -64,6 +69,9 @@ class CollisionChecker {
 /// at negative coordinates, far outside the work area or hidden 20 m away need no bounds:
 /// the exact test sorts out what shares a bucket.
 ///
+/// The scan compares blocks of 8 (AVX-512) or 4 (AVX2) entries at once where the CPU has
+/// them, with the same operations as the scalar test, so the answers do not depend on the CPU.
+///
 /// Entries must be announced with added() in index order after clear(), as SampleContext does;
 /// with another entry vector the checker scans that vector. Buffers grow to the largest scene
 /// seen and are kept: no allocation per attempt, none per scene once warm.
@@ -92,6 +100,8 @@ class RadiusChecker : public CollisionChecker {
   void indexEntry(std::size_t index);
 
   std::size_t scanLimit_;
+  std::unique_ptr<detail::RadiusColumns> columns_;  ///< scanned copy of the items
+  std::size_t (*firstOverlap_)(const detail::RadiusColumns&, const detail::RadiusProbe&);
   bool gridMode_ = false;                ///< more than scanLimit_ entries: the grids are in use
   std::vector<Item> items_;              ///< one per entry, by entry index
   std::vector<std::int32_t> unbounded_;  ///< entries no cell can hold, ascending

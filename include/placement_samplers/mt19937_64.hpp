@@ -11,7 +11,7 @@ namespace placement_samplers {
 /// Why: every scene seeds its own engine, and std::mt19937_64 pays 312 serial seeding steps in
 /// seed() and a regeneration of all 312 state words at the first draw (about 1.7 us), while a
 /// scene draws a handful of numbers. Here seed() only stores the seed; the first 156 outputs are
-/// made one at a time (new word k needs old words k, k + 1 and k + 156 only, so the serial seed
+/// made four at a time (new word k needs old words k, k + 1 and k + 156 only, so the serial seed
 /// chain is extended just as far as the draws need it), and the rest of the first regeneration
 /// is done when output 156 is asked for. After that it is a plain MT19937-64 with a branch-free
 /// regeneration. test/unit/mt19937_64_test.cpp compares it with std::mt19937_64.
