@@ -1,8 +1,10 @@
 #include "placement_samplers/sample_scenes_cli.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
 #include "placement_samplers/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
@@ -39,6 +41,49 @@ std::uint64_t parseUnsigned(const std::string& flag, const std::string& text, st
   } catch (const std::out_of_range&) {
     throw UsageError(flag + ": " + text + " is out of range (at most " + std::to_string(max) + ")");
   }
+}
+
+/// Scenes per block: the output is written block by block, so memory stays bounded for any K.
+constexpr std::uint64_t kBlock = 8192;
+
+/// Samples and prints scenes 0 .. count - 1 in blocks; formatting is spread over the threads
+/// too, since printing a scene costs more than sampling it. @return true when all succeeded.
+bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
+                 std::uint64_t seed, std::uint64_t count, unsigned threads, std::ostream& out) {
+  const unsigned workers =
+      threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::string> texts(workers);
+  bool allPlaced = true;
+  for (std::uint64_t first = 0; first < count; first += kBlock) {
+    const std::uint64_t n = std::min(kBlock, count - first);
+    const std::vector<SceneResult> results =
+        generator.sampleSceneRange(prepared, seed, first, n, threads);
+    const std::size_t slices = static_cast<std::size_t>(std::min<std::uint64_t>(workers, n));
+    auto format = [&](std::size_t slice) {
+      std::string& text = texts[slice];
+      text.clear();
+      for (std::size_t i = slice * n / slices; i < (slice + 1) * n / slices; ++i) {
+        appendSceneJson(text, results[i]);
+        text += '\n';
+      }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t slice = 1; slice < slices; ++slice) {
+      pool.emplace_back(format, slice);
+    }
+    format(0);
+    for (std::thread& t : pool) {
+      t.join();
+    }
+    for (std::size_t slice = 0; slice < slices; ++slice) {
+      out.write(texts[slice].data(), static_cast<std::streamsize>(texts[slice].size()));
+    }
+    for (const SceneResult& scene : results) {
+      allPlaced = allPlaced && scene.success;
+    }
+  }
+  out.flush();
+  return allPlaced;
 }
 
 }  // namespace
@@ -125,13 +170,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     if (!haveSeed) {
       seed = generator.config().seed != 0 ? generator.config().seed : randomSeed();
     }
-    bool allPlaced = true;
-    for (const SceneResult& scene : generator.sampleScenes(prepared, seed, scenes, threads)) {
-      out << sceneToJson(scene) << "\n";
-      allPlaced = allPlaced && scene.success;
-    }
-    out.flush();
-    return allPlaced ? 0 : 1;
+    return writeScenes(generator, prepared, seed, scenes, threads, out) ? 0 : 1;
   } catch (const ConfigError& e) {
     err << "sample_scenes: " << configPath << ": " << e.what() << "\n";
   } catch (const RequestError& e) {

@@ -184,6 +184,13 @@ SceneResult SceneGenerator::sampleScene(const PreparedRequest& request, std::uin
 std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& request,
                                                       std::uint64_t seed, std::uint64_t count,
                                                       unsigned threads) const {
+  return sampleSceneRange(request, seed, 0, count, threads);
+}
+
+std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest& request,
+                                                          std::uint64_t seed, std::uint64_t first,
+                                                          std::uint64_t count,
+                                                          unsigned threads) const {
   std::vector<SceneResult> results(count);
   if (threads == 0) {
     threads = std::max(1u, std::thread::hardware_concurrency());
@@ -203,11 +210,11 @@ std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& req
       for (std::uint64_t i = begin; i < end; ++i) {
         if (worker.expired()) {
           results[i].seed = seed;
-          results[i].index = i;
+          results[i].index = first + i;
           results[i].message = "not sampled: the request ran out of time";
           continue;
         }
-        results[i] = worker.run(seed, i);
+        results[i] = worker.run(seed, first + i);
       }
     }
   };

@@ -1,20 +1,28 @@
 #include "placement_samplers/scene_json.hpp"
 
+#include <charconv>
 #include <cstdio>
 
 namespace placement_samplers {
 namespace {
 
+/// Shortest form that reads back as the same double (std::to_chars without a format).
 void appendNumber(std::string& out, double v) {
   char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", v);
-  out += buffer;
+  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  out.append(buffer, r.ptr);
+}
+
+void appendInteger(std::string& out, std::uint64_t v) {
+  char buffer[24];
+  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  out.append(buffer, r.ptr);
 }
 
 }  // namespace
 
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
+void appendJsonString(std::string& out, const std::string& text) {
+  out += '"';
   for (const char c : text) {
     switch (c) {
       case '"':
@@ -39,32 +47,56 @@ std::string jsonString(const std::string& text) {
         }
     }
   }
-  return out + "\"";
+  out += '"';
 }
 
-std::string sceneToJson(const SceneResult& scene) {
-  std::string out = "{\"scene\": " + std::to_string(scene.index) +
-                    ", \"seed\": " + std::to_string(scene.seed) +
-                    ", \"success\": " + (scene.success ? "true" : "false") +
-                    ", \"message\": " + jsonString(scene.message) + ", \"placements\": [";
+std::string jsonString(const std::string& text) {
+  std::string out;
+  appendJsonString(out, text);
+  return out;
+}
+
+void appendSceneJson(std::string& out, const SceneResult& scene) {
+  out += "{\"scene\": ";
+  appendInteger(out, scene.index);
+  out += ", \"seed\": ";
+  appendInteger(out, scene.seed);
+  out += scene.success ? ", \"success\": true" : ", \"success\": false";
+  out += ", \"message\": ";
+  appendJsonString(out, scene.message);
+  out += ", \"placements\": [";
   for (std::size_t i = 0; i < scene.placements.size(); ++i) {
     const ObjectPlacement& p = scene.placements[i];
-    out += i == 0 ? "{" : ", {";
-    out += "\"name\": " + jsonString(p.name) + ", \"sampler\": " + jsonString(p.sampler) +
-           ", \"position\": [";
+    out += i == 0 ? "{\"name\": " : ", {\"name\": ";
+    appendJsonString(out, p.name);
+    out += ", \"sampler\": ";
+    appendJsonString(out, p.sampler);
+    out += ", \"position\": [";
     for (int k = 0; k < 3; ++k) {
-      if (k > 0) out += ", ";
+      if (k > 0) {
+        out += ", ";
+      }
       appendNumber(out, p.position[k]);
     }
     out += "], \"orientation\": [";
     const Eigen::Vector4d q = p.orientation.coeffs();  // x, y, z, w
     for (int k = 0; k < 4; ++k) {
-      if (k > 0) out += ", ";
+      if (k > 0) {
+        out += ", ";
+      }
       appendNumber(out, q[k]);
     }
-    out += "], \"attempts\": " + std::to_string(p.attempts) + "}";
+    out += "], \"attempts\": ";
+    appendInteger(out, p.attempts);
+    out += '}';
   }
-  return out + "]}";
+  out += "]}";
+}
+
+std::string sceneToJson(const SceneResult& scene) {
+  std::string out;
+  appendSceneJson(out, scene);
+  return out;
 }
 
 }  // namespace placement_samplers

@@ -66,6 +66,12 @@ class SceneGenerator {
   std::vector<SceneResult> sampleScenes(const PreparedRequest& request, std::uint64_t seed,
                                         std::uint64_t count, unsigned threads = 1) const;
 
+  /// Scenes @p first .. first + count - 1 of the same numbering: a long request taken in
+  /// blocks gives the scenes sampleScenes() would. The time limit starts with each call.
+  std::vector<SceneResult> sampleSceneRange(const PreparedRequest& request, std::uint64_t seed,
+                                            std::uint64_t first, std::uint64_t count,
+                                            unsigned threads = 1) const;
+
  private:
   class Worker;
   std::shared_ptr<const SceneConfig> config_;

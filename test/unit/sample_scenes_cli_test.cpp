@@ -4,12 +4,17 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "placement_samplers/config_builder.hpp"
+#include "placement_samplers/config_node.hpp"
 #include "placement_samplers/sample_scenes_cli.hpp"
+#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/scene_json.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -110,6 +115,53 @@ TEST(SampleScenesCli, SceneIndependentOfScenesAndThreads) {
   for (std::size_t i = 0; i < few.lines.size(); ++i) {
     EXPECT_EQ(few.lines[i], many.lines[i]);
   }
+}
+
+// Output goes out in blocks of 8192 scenes, formatted on every thread: the lines across a
+// block boundary are the scenes sampleScenes() gives, in order, and the numbers read back as
+// the same doubles.
+TEST(SampleScenesCli, BlocksAndThreadsGiveTheScenesOfSampleScenes) {
+  const std::uint64_t scenes = 8192 + 37;
+  const CliRun r = run({"--config", kDefaultConfig, "--seed", "9", "--scenes",
+                        std::to_string(scenes), "--threads", "2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(r.lines.size(), scenes);
+  const SceneGenerator generator(buildSceneConfig(loadYamlFile(kDefaultConfig)));
+  const PreparedRequest request = generator.prepare(SampleRequest{});
+  const std::vector<SceneResult> expected = generator.sampleScenes(request, 9, scenes, 1);
+  for (const std::uint64_t i : {std::uint64_t{0}, std::uint64_t{8190}, std::uint64_t{8191},
+                                std::uint64_t{8192}, std::uint64_t{8193}, scenes - 1}) {
+    EXPECT_EQ(r.lines[i], sceneToJson(expected[i])) << "scene " << i;
+  }
+  // Every coordinate of a line parses back to the sampled double.
+  const std::string& line = r.lines[8192];
+  const ObjectPlacement& first = expected[8192].placements.front();
+  const std::size_t at = line.find("\"position\": [") + 13;
+  char* end = nullptr;
+  const double x = std::strtod(line.c_str() + at, &end);
+  const double y = std::strtod(end + 2, &end);
+  const double z = std::strtod(end + 2, &end);
+  EXPECT_EQ(x, first.position.x());
+  EXPECT_EQ(y, first.position.y());
+  EXPECT_EQ(z, first.position.z());
+}
+
+TEST(SampleScenesCli, NumbersAreTheShortestThatReadBack) {
+  SceneResult scene;
+  scene.index = 3;
+  scene.seed = 18446744073709551615ull;
+  scene.success = true;
+  ObjectPlacement p;
+  p.name = "cube";
+  p.sampler = "S";
+  p.position = Eigen::Vector3d(0.831, -0.1, 1e-300);
+  p.orientation = Eigen::Quaterniond(0.5, -0.5, 0.5, 0.1 + 0.2);  // w, x, y, z
+  p.attempts = 2;
+  scene.placements.push_back(p);
+  EXPECT_EQ(sceneToJson(scene),
+            "{\"scene\": 3, \"seed\": 18446744073709551615, \"success\": true, \"message\": \"\", "
+            "\"placements\": [{\"name\": \"cube\", \"sampler\": \"S\", \"position\": [0.831, -0.1, "
+            "1e-300], \"orientation\": [-0.5, 0.5, 0.30000000000000004, 0.5], \"attempts\": 2}]}");
 }
 
 TEST(SampleScenesCli, SeedFromTheConfiguration) {
