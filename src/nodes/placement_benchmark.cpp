@@ -24,6 +24,7 @@
 #include "placement_samplers/random.hpp"
 #include "placement_samplers/sample_context.hpp"
 #include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/scene_json.hpp"
 
 #ifndef PLACEMENT_SAMPLERS_CONFIG_DIR
 #define PLACEMENT_SAMPLERS_CONFIG_DIR "config"
@@ -44,7 +45,8 @@ struct Options {
   int repetitions = 5;         ///< timed repetitions per figure; the median is printed
   double secondsPerRep = 0.1;  ///< [s] target length of one repetition
   std::uint64_t batchScenes = 10000;
-  std::uint64_t statScenes = 2000;  ///< scenes behind attempts per object and failure rate
+  std::uint64_t statScenes = 2000;       ///< scenes behind attempts per object and failure rate
+  std::vector<std::string> configFiles;  ///< --config: time these files only
 };
 
 /// Keeps results observable so the optimiser cannot drop the work.
@@ -581,13 +583,68 @@ void benchBatch(const Options& options) {
   }
 }
 
+/// Any configuration files (--config): the figures a side-by-side comparison needs.
+void benchConfigFiles(const Options& options) {
+  std::printf(
+      "\nConfiguration files, time per scene (median of %d; attempts and failures over "
+      "%llu seeded scenes)\n",
+      options.repetitions, static_cast<unsigned long long>(options.statScenes));
+  rule();
+  std::printf("%-28s %9s %9s %9s %9s %9s %8s %7s\n", "config", "sample", "+seed", "batch1t",
+              "batch2t", "+json1t", "att/obj", "fail");
+  std::printf("%-28s %9s %9s %9s %9s %9s %8s %7s\n", "", "[ns]", "[ns]", "[ns]", "[ns]", "[ns]", "",
+              "rate");
+  rule();
+  for (const std::string& file : options.configFiles) {
+    ps::BuildOptions build;
+    const std::size_t slash = file.find_last_of('/');
+    build.baseDirectory = slash == std::string::npos ? "" : file.substr(0, slash);
+    Setup setup;
+    setup.generator =
+        std::make_unique<ps::SceneGenerator>(ps::buildSceneConfig(ps::loadYamlFile(file), build));
+    setup.request = setup.generator->prepare(ps::SampleRequest{});
+    SceneLoop loop(setup.request,
+                   ps::makeCollisionChecker(setup.request.collisionCheck,
+                                            setup.generator->config().collisionMargin));
+    const double reused = nsPerOp(options, [&](std::uint64_t n) { loop.runReused(n); });
+    const double seeded = nsPerOp(options, [&](std::uint64_t n) { loop.runSeeded(n); });
+    double batch[2] = {0.0, 0.0};
+    for (unsigned threads : {1u, 2u}) {
+      batch[threads - 1] = nsPerOp(options, [&](std::uint64_t n) {
+        const auto results = setup.generator->sampleScenes(setup.request, kSeed, n, threads);
+        gSink = gSink + static_cast<double>(results.back().placements.size());
+      });
+    }
+    std::string text;
+    const double json = nsPerOp(options, [&](std::uint64_t n) {
+      const auto results = setup.generator->sampleScenes(setup.request, kSeed, n, 1);
+      text.clear();
+      for (const ps::SceneResult& r : results) {
+        ps::appendSceneJson(text, r);
+        text += '\n';
+      }
+      gSink = gSink + static_cast<double>(text.size());
+    });
+    const SceneStats stats = collectStats(loop, options.statScenes);
+    const std::string name = file.substr(slash == std::string::npos ? 0 : slash + 1);
+    std::printf("%-28s %9.1f %9.1f %9.1f %9.1f %9.1f %8.2f %7.4f\n", name.c_str(), reused, seeded,
+                batch[0], batch[1], json, stats.attemptsPerObject(), stats.failureRate());
+  }
+  std::printf(
+      "sample: engine seeded once and reused; +seed: engine.seed(sceneSeed(seed, i)) per scene; "
+      "batch1t/2t:\nSceneGenerator::sampleScenes on 1/2 threads (wall time per scene, results "
+      "built); +json1t: batch1t plus\nthe JSON lines of sample_scenes.\n");
+}
+
 int usage(const char* self) {
   std::fprintf(stderr,
                "usage: %s [--config-dir DIR] [--quick] [--only envs|blocks|clutter|fcl|batch]\n"
+               "       %s [--quick] --config FILE [--config FILE ...]\n"
                "Times the samplers on fixed configurations and seeds and prints tables.\n"
                "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
-               "(default: %s). --quick: fewer, shorter repetitions.\n",
-               self, PLACEMENT_SAMPLERS_CONFIG_DIR);
+               "(default: %s). --quick: fewer, shorter repetitions. --config: time these\n"
+               "configuration files only (any sampler setup, relative paths from the file).\n",
+               self, self, PLACEMENT_SAMPLERS_CONFIG_DIR);
   return 2;
 }
 
@@ -600,6 +657,8 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--config-dir" && i + 1 < argc) {
       options.configDir = argv[++i];
+    } else if (arg == "--config" && i + 1 < argc) {
+      options.configFiles.push_back(argv[++i]);
     } else if (arg == "--quick") {
       options.repetitions = 3;
       options.secondsPerRep = 0.03;
@@ -615,6 +674,12 @@ int main(int argc, char** argv) {
     }
   }
   try {
+    if (!options.configFiles.empty()) {
+      std::printf("placement_benchmark: request seed %llu\n",
+                  static_cast<unsigned long long>(kSeed));
+      benchConfigFiles(options);
+      return 0;
+    }
     std::printf("placement_benchmark: request seed %llu, configurations from %s\n",
                 static_cast<unsigned long long>(kSeed), options.configDir.c_str());
     if (only.empty() || only == "envs") {
