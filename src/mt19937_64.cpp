@@ -45,6 +45,32 @@ void Mt19937_64::extendSeed(std::size_t last) {
   }
 }
 
+void Mt19937_64::seedMany(Mt19937_64* const* engines, const result_type* seeds, std::size_t count) {
+  // Lockstep over groups of up to 8 engines: each step of one chain waits for its previous
+  // word (multiply latency), so the steps of the other chains fill the gaps.
+  constexpr std::size_t kGroup = 8;
+  for (std::size_t first = 0; first < count; first += kGroup) {
+    const std::size_t n = std::min(kGroup, count - first);
+    std::uint64_t word[kGroup] = {};
+    for (std::size_t e = 0; e < n; ++e) {
+      Mt19937_64& engine = *engines[first + e];
+      engine.seed(seeds[first + e]);
+      word[e] = seeds[first + e];
+    }
+    for (std::size_t j = 1; j < kManySeedDepth; ++j) {
+      for (std::size_t e = 0; e < kGroup; ++e) {  // a fixed count: the compiler unrolls it
+        word[e] = kSeedMultiplier * (word[e] ^ (word[e] >> 62)) + j;
+      }
+      for (std::size_t e = 0; e < n; ++e) {
+        engines[first + e]->state_[j] = word[e];
+      }
+    }
+    for (std::size_t e = 0; e < n; ++e) {
+      engines[first + e]->seeded_ = kManySeedDepth;
+    }
+  }
+}
+
 void Mt19937_64::prepareNext() {
   if (index_ >= kN) {
     // A whole block was output: a full regeneration, as any MT.

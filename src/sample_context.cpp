@@ -5,7 +5,7 @@
 namespace placement_samplers {
 
 SampleContext::SampleContext(Engine& engine, CollisionChecker& checker, std::uint32_t maxAttempts)
-    : engine_(engine), checker_(checker), maxAttempts_(maxAttempts) {}
+    : engine_(&engine), checker_(checker), maxAttempts_(maxAttempts) {}
 
 void SampleContext::clear() {
   entries_.clear();

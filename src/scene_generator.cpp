@@ -27,8 +27,40 @@ class SceneGenerator::Worker {
   }
   bool expired() const { return context_.expired(); }
 
+  /// Scene @p index with the worker's engine seeded for it.
   SceneResult run(std::uint64_t seed, std::uint64_t index) {
     engine_.seed(sceneSeed(seed, index));
+    context_.setEngine(engine_);
+    return sample(seed, index);
+  }
+
+  /// Scenes first .. first + count - 1 (count <= kBatch) into @p results, their engines
+  /// seeded together.
+  void runBatch(std::uint64_t seed, std::uint64_t first, std::size_t count, SceneResult* results) {
+    std::uint64_t seeds[kBatch];
+    Engine* engines[kBatch];
+    for (std::size_t k = 0; k < count; ++k) {
+      seeds[k] = sceneSeed(seed, first + k);
+      engines[k] = &batchEngines_[k];
+    }
+    Engine::seedMany(engines, seeds, count);
+    for (std::size_t k = 0; k < count; ++k) {
+      if (expired()) {
+        results[k].seed = seed;
+        results[k].index = first + k;
+        results[k].message = "not sampled: the request ran out of time";
+        continue;
+      }
+      context_.setEngine(batchEngines_[k]);
+      results[k] = sample(seed, first + k);
+    }
+  }
+
+  /// Scenes seeded together by runBatch().
+  static constexpr std::size_t kBatch = 8;
+
+ private:
+  SceneResult sample(std::uint64_t seed, std::uint64_t index) {
     context_.clear();
     for (const FixtureSpec& f : request_.fixtures) {
       context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
@@ -46,9 +78,9 @@ class SceneGenerator::Worker {
     return result;
   }
 
- private:
   const PreparedRequest& request_;
   Engine engine_;
+  Engine batchEngines_[kBatch];
   std::unique_ptr<CollisionChecker> checker_;
   SampleContext context_;
   std::size_t objects_;  ///< objects the sampler places
@@ -207,14 +239,9 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
     for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
          begin = next.fetch_add(kChunk)) {
       const std::uint64_t end = std::min(count, begin + kChunk);
-      for (std::uint64_t i = begin; i < end; ++i) {
-        if (worker.expired()) {
-          results[i].seed = seed;
-          results[i].index = first + i;
-          results[i].message = "not sampled: the request ran out of time";
-          continue;
-        }
-        results[i] = worker.run(seed, first + i);
+      for (std::uint64_t i = begin; i < end; i += Worker::kBatch) {
+        const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(Worker::kBatch, end - i));
+        worker.runBatch(seed, first + i, n, &results[i]);
       }
     }
   };

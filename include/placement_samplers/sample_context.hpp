@@ -53,7 +53,9 @@ class SampleContext {
   }
   bool expired() const { return deadline_ && std::chrono::steady_clock::now() > *deadline_; }
 
-  Engine& engine() { return engine_; }
+  Engine& engine() { return *engine_; }
+  /// Draws from @p engine from now on (a batch seeds several engines at once).
+  void setEngine(Engine& engine) { engine_ = &engine; }
   std::uint32_t maxAttempts() const { return maxAttempts_; }
   const std::vector<PlacedEntry>& entries() const { return entries_; }
   const std::vector<ObjectPlacement>& placements() const { return placements_; }
@@ -61,7 +63,7 @@ class SampleContext {
   const std::optional<Failure>& failure() const { return failure_; }
 
  private:
-  Engine& engine_;
+  Engine* engine_;
   CollisionChecker& checker_;
   std::uint32_t maxAttempts_;
   std::vector<PlacedEntry> entries_;
