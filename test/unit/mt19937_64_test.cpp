@@ -179,5 +179,30 @@ TEST(Mt19937_64, WorksWithStandardDistributions) {
   }
 }
 
+// seedMany() as a batch uses it: groups of 1 to 19 engines (one, several and a partial group
+// of eight), engines that drew before, then draws across every regeneration.
+TEST(Mt19937_64, SeedManyGivesTheNumbersOfSeed) {
+  const std::vector<std::uint64_t> seeds = testSeeds();
+  std::vector<Mt19937_64> engines(19);
+  std::size_t used = 0;
+  for (std::size_t count = 1; count <= engines.size(); ++count) {
+    std::vector<Mt19937_64*> pointers;
+    std::vector<std::uint64_t> batch;
+    for (std::size_t k = 0; k < count; ++k) {
+      engines[k]();  // a used engine: seedMany must restart it
+      pointers.push_back(&engines[k]);
+      batch.push_back(seeds[used++ % seeds.size()]);
+    }
+    Mt19937_64::seedMany(pointers.data(), batch.data(), count);
+    for (std::size_t k = 0; k < count; ++k) {
+      std::mt19937_64 reference(batch[k]);
+      for (int i = 0; i < kDraws / 2; ++i) {
+        ASSERT_EQ(engines[k](), reference()) << "seed " << batch[k] << ", group of " << count
+                                             << ", engine " << k << ", draw " << i;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace placement_samplers
