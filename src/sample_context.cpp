@@ -28,7 +28,7 @@ void SampleContext::addPlacement(ObjectPlacement placement) {
   placements_.push_back(std::move(placement));
 }
 
-void SampleContext::addPlacement(const std::string& sampler, const Candidate& candidate,
+void SampleContext::addPlacement(std::string_view sampler, const Candidate& candidate,
                                  std::uint32_t attempts, bool hidden) {
   ObjectPlacement& placement = placements_.emplace_back();
   placement.name = candidate.object->name;

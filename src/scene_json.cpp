@@ -21,7 +21,7 @@ void appendInteger(std::string& out, std::uint64_t v) {
 
 }  // namespace
 
-void appendJsonString(std::string& out, const std::string& text) {
+void appendJsonString(std::string& out, std::string_view text) {
   out += '"';
   for (const char c : text) {
     switch (c) {

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "placement_samplers/object_model.hpp"
@@ -11,8 +12,10 @@ namespace placement_samplers {
 
 /// One sampled object pose.
 struct ObjectPlacement {
-  std::string name;                                    ///< object name
-  std::string sampler;                                 ///< the uniform sampler that placed it
+  std::string name;  ///< object name
+  /// Name of the uniform sampler that placed it, owned by the configuration (as @ref object):
+  /// a view, so that a scene's result costs no allocation per placement.
+  std::string_view sampler;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< object origin [m]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
   std::uint32_t attempts = 0;           ///< samples drawn, the accepted one included

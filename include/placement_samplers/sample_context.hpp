@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "placement_samplers/collision_checker.hpp"
@@ -29,7 +30,7 @@ class SampleContext {
   void addPlacement(ObjectPlacement placement);
   /// The same for @p candidate accepted by sampler @p sampler after @p attempts samples, built
   /// in place: the samplers' path, without moving strings around.
-  void addPlacement(const std::string& sampler, const Candidate& candidate, std::uint32_t attempts,
+  void addPlacement(std::string_view sampler, const Candidate& candidate, std::uint32_t attempts,
                     bool hidden);
 
   /// The fixture or placed object called @p name, or nullptr.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "placement_samplers/placement.hpp"
 
@@ -18,6 +19,6 @@ void appendSceneJson(std::string& out, const SceneResult& scene);
 std::string jsonString(const std::string& text);
 
 /// jsonString(), appended to @p out.
-void appendJsonString(std::string& out, const std::string& text);
+void appendJsonString(std::string& out, std::string_view text);
 
 }  // namespace placement_samplers

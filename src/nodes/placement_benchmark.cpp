@@ -21,6 +21,7 @@
 #include "placement_samplers/config_builder.hpp"
 #include "placement_samplers/config_node.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/malloc_tuning.hpp"
 #include "placement_samplers/random.hpp"
 #include "placement_samplers/sample_context.hpp"
 #include "placement_samplers/scene_generator.hpp"
@@ -47,6 +48,7 @@ struct Options {
   std::uint64_t batchScenes = 10000;
   std::uint64_t statScenes = 2000;       ///< scenes behind attempts per object and failure rate
   std::vector<std::string> configFiles;  ///< --config: time these files only
+  bool defaultMalloc = false;            ///< --default-malloc: glibc's defaults
 };
 
 /// Keeps results observable so the optimiser cannot drop the work.
@@ -638,12 +640,14 @@ void benchConfigFiles(const Options& options) {
 
 int usage(const char* self) {
   std::fprintf(stderr,
-               "usage: %s [--config-dir DIR] [--quick] [--only envs|blocks|clutter|fcl|batch]\n"
+               "usage: %s [--config-dir DIR] [--quick] [--default-malloc] [--only "
+               "envs|blocks|clutter|fcl|batch]\n"
                "       %s [--quick] --config FILE [--config FILE ...]\n"
                "Times the samplers on fixed configurations and seeds and prints tables.\n"
                "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
                "(default: %s). --quick: fewer, shorter repetitions. --config: time these\n"
-               "configuration files only (any sampler setup, relative paths from the file).\n",
+               "configuration files only (any sampler setup, relative paths from the file).\n"
+               "--default-malloc: do not tune malloc as sample_scenes and placement_server do.\n",
                self, self, PLACEMENT_SAMPLERS_CONFIG_DIR);
   return 2;
 }
@@ -657,6 +661,8 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--config-dir" && i + 1 < argc) {
       options.configDir = argv[++i];
+    } else if (arg == "--default-malloc") {
+      options.defaultMalloc = true;
     } else if (arg == "--config" && i + 1 < argc) {
       options.configFiles.push_back(argv[++i]);
     } else if (arg == "--quick") {
@@ -673,6 +679,11 @@ int main(int argc, char** argv) {
       return usage(argv[0]);
     }
   }
+  // As sample_scenes and placement_server do: batches reuse the memory of the previous one.
+  const bool tuned = !options.defaultMalloc && ps::keepFreedMemoryForBatches();
+  std::printf("malloc: %s\n", tuned ? "keeps freed memory for the next batch, as sample_scenes and "
+                                      "placement_server (--default-malloc: glibc's defaults)"
+                                    : "glibc's defaults");
   try {
     if (!options.configFiles.empty()) {
       std::printf("placement_benchmark: request seed %llu\n",

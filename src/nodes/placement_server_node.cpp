@@ -1,9 +1,11 @@
 #include <ros/ros.h>
 
+#include "placement_samplers/malloc_tuning.hpp"
 #include "placement_samplers/ros/placement_server.hpp"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "placement_server");
+  placement_samplers::keepFreedMemoryForBatches();
   placement_samplers::ros_interface::PlacementServer server(ros::NodeHandle("~"));
   try {
     server.start();

@@ -2,9 +2,11 @@
 #include <string>
 #include <vector>
 
+#include "placement_samplers/malloc_tuning.hpp"
 #include "placement_samplers/sample_scenes_cli.hpp"
 
 int main(int argc, char** argv) {
+  placement_samplers::keepFreedMemoryForBatches();
   const std::vector<std::string> args(argv + 1, argv + argc);
   return placement_samplers::runSampleScenes(args, std::cout, std::cerr);
 }
