@@ -156,6 +156,9 @@ struct FclChecker::Impl {
   }
 
   ObjectGeometry& geometryOf(const ObjectModel& object) {
+    if (&object == lastObject) {  // attempts for one object come in runs
+      return *lastGeometry;
+    }
     std::unique_ptr<ObjectGeometry>& slot = objects[&object];
     if (!slot) {
       slot = std::make_unique<ObjectGeometry>();
@@ -165,7 +168,42 @@ struct FclChecker::Impl {
       }
       initInstance(*slot, slot->candidate);
     }
+    lastObject = &object;
+    lastGeometry = slot.get();
     return *slot;
+  }
+
+  /// Adds a placed body to the broadphase: a list while there are few, FCL's tree beyond.
+  void registerBody(Body* body) {
+    bodies.push_back(body);
+    if (treeMode) {
+      manager->registerObject(body);
+    } else if (bodies.size() > listLimit) {
+      for (Body* b : bodies) {
+        manager->registerObject(b);
+      }
+      treeMode = true;
+    }
+  }
+
+  /// The candidate's bodies against the placed ones; query.hit is set on the first collision.
+  void collide(const Instance& candidate, Query& query) {
+    for (const std::unique_ptr<Body>& body : candidate.bodies) {
+      if (treeMode) {
+        manager->collide(body.get(), &query, &Impl::onPair);
+      } else {
+        // In entry order, boxes first: for a few bodies cheaper than the tree.
+        const fcl::AABBd& box = body->getAABB();
+        for (Body* other : bodies) {
+          if (box.overlap(other->getAABB()) && onPair(body.get(), other, &query)) {
+            break;
+          }
+        }
+      }
+      if (query.hit != kNone) {
+        return;
+      }
+    }
   }
 
   static void initInstance(const ObjectGeometry& g, Instance& instance) {
@@ -236,6 +274,11 @@ struct FclChecker::Impl {
   double margin;
   double threshold;  ///< reject below this signed distance [m]
   std::unordered_map<const ObjectModel*, std::unique_ptr<ObjectGeometry>> objects;
+  const ObjectModel* lastObject = nullptr;  ///< the object of lastGeometry
+  ObjectGeometry* lastGeometry = nullptr;
+  std::vector<Body*> bodies;  ///< placed bodies of the scene, in entry order
+  bool treeMode = false;      ///< bodies are in the manager too
+  std::size_t listLimit = kDefaultListLimit;
   std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager =
       std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
   fcl::CollisionRequestd boolRequest;
@@ -245,12 +288,13 @@ struct FclChecker::Impl {
   mutable fcl::DistanceResultd distance;
 };
 
-FclChecker::FclChecker(double margin) {
+FclChecker::FclChecker(double margin, std::size_t listLimit) {
   if (!std::isfinite(margin) || margin < 0.0) {
     throw std::invalid_argument("collision margin must be finite and non-negative, got " +
                                 std::to_string(margin));
   }
   impl_ = std::make_unique<Impl>(margin);
+  impl_->listLimit = listLimit;
 }
 
 FclChecker::~FclChecker() = default;
@@ -258,7 +302,11 @@ FclChecker::~FclChecker() = default;
 double FclChecker::margin() const { return impl_->margin; }
 
 void FclChecker::clear() {
-  impl_->manager->clear();
+  if (impl_->treeMode) {
+    impl_->manager->clear();
+    impl_->treeMode = false;
+  }
+  impl_->bodies.clear();
   for (auto& entry : impl_->objects) {
     entry.second->used = 0;
   }
@@ -275,25 +323,20 @@ void FclChecker::added(const std::vector<PlacedEntry>& entries, std::size_t inde
   Impl::place(g, *entry.object, instance, entry.position, entry.orientation, 0.0);
   instance.entry = static_cast<std::ptrdiff_t>(index);
   for (const std::unique_ptr<Body>& body : instance.bodies) {
-    impl_->manager->registerObject(body.get());
+    impl_->registerBody(body.get());
   }
 }
 
 std::ptrdiff_t FclChecker::firstCollision(const std::vector<PlacedEntry>& /*entries*/,
                                           const Candidate& candidate) const {
-  if (impl_->manager->empty()) {
+  if (impl_->bodies.empty()) {
     return kNone;
   }
   Impl::ObjectGeometry& g = impl_->geometryOf(*candidate.object);
   Impl::place(g, *candidate.object, g.candidate, candidate.position, candidate.orientation,
               impl_->margin);
   Impl::Query query{impl_.get(), &g.candidate, kNone};
-  for (const std::unique_ptr<Body>& body : g.candidate.bodies) {
-    impl_->manager->collide(body.get(), &query, &Impl::onPair);
-    if (query.hit != kNone) {
-      break;
-    }
-  }
+  impl_->collide(g.candidate, query);
   return query.hit;
 }
 

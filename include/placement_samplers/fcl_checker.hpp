@@ -33,9 +33,15 @@ class FclChecker : public CollisionChecker {
   /// Penetration depth [m] up to which shapes in contact still count as touching.
   static constexpr double kTouchTolerance = 1e-6;
 
+  /// Up to this many placed bodies the broadphase is a list checked in entry order (faster
+  /// than FCL's dynamic AABB tree for robosuite-sized scenes, docs/benchmarks.md); beyond, the
+  /// tree. Both accept and reject the same candidates.
+  static constexpr std::size_t kDefaultListLimit = 32;
+
   /// @param margin required clearance between objects [m], finite and non-negative
+  /// @param listLimit placed bodies up to which the list is used (0 = always the tree)
   /// @throw std::invalid_argument when @p margin is negative or not finite
-  explicit FclChecker(double margin = 0.0);
+  explicit FclChecker(double margin = 0.0, std::size_t listLimit = kDefaultListLimit);
   ~FclChecker() override;
   FclChecker(const FclChecker&) = delete;
   FclChecker& operator=(const FclChecker&) = delete;

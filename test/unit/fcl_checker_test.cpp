@@ -7,7 +7,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/fcl_checker.hpp"
 #include "placement_samplers/object_config.hpp"
+#include "placement_samplers/sample_context.hpp"
 #include "placement_samplers/scene_generator.hpp"
 
 namespace placement_samplers {
@@ -599,6 +602,60 @@ samplers:
   const SceneResult scene = generator.sampleScene(generator.prepare(SampleRequest()), 1, 0);
   ASSERT_TRUE(scene.success) << scene.message;
   EXPECT_EQ(scene.placements.front().attempts, 1u);  // placed inside the slab, unchecked
+}
+
+}  // namespace
+}  // namespace placement_samplers
+
+namespace placement_samplers {
+namespace {
+
+// The broadphase is a list up to FclChecker::kDefaultListLimit placed bodies and FCL's tree
+// beyond: both must accept and reject the same candidates, so the same seeds give the same
+// scenes with the list only, the tree only and the default switch (60 sticks: the switch is
+// crossed in every scene), and no two placed sticks overlap.
+TEST(FclChecker, ListAndTreeBroadphaseGiveTheSameScenes) {
+  std::ostringstream yaml;
+  yaml << "collision_check: fcl\nobjects:\n";
+  for (int i = 0; i < 60; ++i) {
+    yaml << "  s" << i << ": {shape: box, size: [0.12, 0.02, 0.02]}\n";
+  }
+  yaml << "samplers:\n  - name: Sticks\n    objects: [";
+  for (int i = 0; i < 60; ++i) {
+    yaml << (i > 0 ? ", " : "") << "s" << i;
+  }
+  yaml << "]\n    x_range: [-0.45, 0.45]\n    y_range: [-0.45, 0.45]\n    max_attempts: 200\n";
+  const SceneGenerator generator(build(yaml.str()));
+  const PreparedRequest request = generator.prepare(SampleRequest());
+  std::vector<std::vector<ObjectPlacement>> scenes[3];
+  const std::size_t limits[3] = {std::numeric_limits<std::size_t>::max(), 0,
+                                 FclChecker::kDefaultListLimit};
+  for (int k = 0; k < 3; ++k) {
+    FclChecker checker(0.0, limits[k]);
+    Engine engine;
+    SampleContext context(engine, checker);
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+      engine.seed(seed);
+      context.clear();
+      request.sampler->sample(context, request.reference, request.onTop);
+      scenes[k].push_back(context.placements());
+    }
+  }
+  for (std::size_t s = 0; s < scenes[0].size(); ++s) {
+    ASSERT_GT(scenes[0][s].size(), FclChecker::kDefaultListLimit + 5) << "scene " << s;
+    for (int k = 1; k < 3; ++k) {
+      ASSERT_EQ(scenes[k][s].size(), scenes[0][s].size()) << "scene " << s << ", checker " << k;
+      for (std::size_t i = 0; i < scenes[0][s].size(); ++i) {
+        EXPECT_EQ(scenes[k][s][i].position, scenes[0][s][i].position);
+        EXPECT_EQ(scenes[k][s][i].attempts, scenes[0][s][i].attempts);
+      }
+    }
+    for (std::size_t i = 0; i < scenes[0][s].size(); ++i) {
+      for (std::size_t j = i + 1; j < scenes[0][s].size(); ++j) {
+        EXPECT_LE(rectangleOverlap(footprint(scenes[0][s][i]), footprint(scenes[0][s][j])), 1e-6);
+      }
+    }
+  }
 }
 
 }  // namespace
