@@ -40,6 +40,13 @@ class SceneGenerator::Worker {
   /// Scenes first .. first + count - 1 (count <= kBatch) into @p results, their engines
   /// seeded together.
   void runBatch(std::uint64_t seed, std::uint64_t first, std::size_t count, SceneResult* results) {
+    if (count == 1 && !expired()) {
+      results[0] = run(seed, first);  // nothing to seed alongside
+      return;
+    }
+    if (batchEngines_.empty()) {
+      batchEngines_.resize(kBatch);  // 20 kB of state: only for requests of several scenes
+    }
     std::uint64_t seeds[kBatch];
     Engine* engines[kBatch];
     for (std::size_t k = 0; k < count; ++k) {
@@ -83,7 +90,7 @@ class SceneGenerator::Worker {
 
   const PreparedRequest& request_;
   Engine engine_;
-  Engine batchEngines_[kBatch];
+  std::vector<Engine> batchEngines_;
   std::unique_ptr<CollisionChecker> checker_;
   SampleContext context_;
   std::size_t objects_;  ///< objects the sampler places
