@@ -574,7 +574,7 @@ void benchBatch(const Options& options) {
   const Setup setup = makeSetup(ps::loadYamlFile(options.configDir + "/pick_place.yaml"));
   const std::uint64_t k = options.batchScenes;
   // 1 and 2 threads alternate, so that other load on the machine hits both alike.
-  const int repetitions = 2 * options.repetitions + 1;
+  const int repetitions = 4 * options.repetitions + 1;
   std::vector<double> samples[2];
   for (int r = 0; r < repetitions + 1; ++r) {  // the first round warms up
     for (unsigned threads : {1u, 2u}) {
