@@ -1,5 +1,6 @@
 #include "placement_samplers/scene_json.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 
@@ -23,6 +24,15 @@ void appendInteger(std::string& out, std::uint64_t v) {
 
 void appendJsonString(std::string& out, std::string_view text) {
   out += '"';
+  // Names are plain almost always: one append when nothing needs escaping.
+  const bool plain = std::all_of(text.begin(), text.end(), [](char c) {
+    return static_cast<unsigned char>(c) >= 0x20 && c != '"' && c != '\\';
+  });
+  if (plain) {
+    out.append(text);
+    out += '"';
+    return;
+  }
   for (const char c : text) {
     switch (c) {
       case '"':
