@@ -33,7 +33,8 @@ struct Failure {
   std::string message;             ///< the full sentence
 };
 
-/// The outcome of one scene.
+/// The outcome of one scene. Its placements point into the configuration that sampled them
+/// (`object`, `sampler`): keep the SceneGenerator, or its configPtr(), as long as the result.
 struct SceneResult {
   std::uint64_t seed = 0;   ///< the request seed
   std::uint64_t index = 0;  ///< the scene index within the request
