@@ -274,7 +274,7 @@ void RadiusChecker::clear() {
 }
 
 void RadiusChecker::added(const std::vector<PlacedEntry>& entries, std::size_t index) {
-  if (index != items_.size()) {
+  if (index != columns_->size()) {
     // Not announced in order (a caller other than SampleContext): index everything again.
     clear();
     for (std::size_t i = 0; i < index; ++i) {
@@ -282,18 +282,24 @@ void RadiusChecker::added(const std::vector<PlacedEntry>& entries, std::size_t i
     }
   }
   const PlacedEntry& entry = entries[index];
-  items_.push_back(Item{entry.position.x(), entry.position.y(), entry.position.z(),
-                        entry.object->horizontalRadius, entry.object->topOffset.z()});
   columns_->push(entry.position.x(), entry.position.y(), entry.position.z(),
                  entry.object->horizontalRadius, entry.object->topOffset.z());
   if (gridMode_) {
+    items_.push_back(itemOf(index));
     indexEntry(index);
-  } else if (items_.size() > scanLimit_) {
+  } else if (columns_->size() > scanLimit_) {
+    // The grids read items: made from the columns when the scene first needs them.
     gridMode_ = true;
-    for (std::size_t i = 0; i < items_.size(); ++i) {
+    for (std::size_t i = 0; i < columns_->size(); ++i) {
+      items_.push_back(itemOf(i));
       indexEntry(i);
     }
   }
+}
+
+RadiusChecker::Item RadiusChecker::itemOf(std::size_t index) const {
+  const detail::RadiusColumns& c = *columns_;
+  return Item{c.x()[index], c.y()[index], c.z()[index], c.radius()[index], c.top()[index]};
 }
 
 void RadiusChecker::indexEntry(std::size_t index) {
@@ -334,7 +340,7 @@ void RadiusChecker::indexEntry(std::size_t index) {
 
 std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& entries,
                                              const Candidate& candidate) const {
-  const std::size_t n = items_.size();
+  const std::size_t n = columns_->size();
   if (entries.size() != n) {
     // Entries the checker was not told about: robosuite's scan over them.
     for (std::size_t i = 0; i < entries.size(); ++i) {

@@ -30,19 +30,13 @@ void SampleContext::addPlacement(ObjectPlacement placement) {
 
 void SampleContext::addPlacement(std::string_view sampler, const Candidate& candidate,
                                  std::uint32_t attempts, bool hidden) {
-  ObjectPlacement& placement = placements_.emplace_back();
-  placement.name = candidate.object->name;
-  placement.sampler = sampler;
-  placement.position = candidate.position;
-  placement.orientation = candidate.orientation;
-  placement.attempts = attempts;
-  placement.object = candidate.object;
-  placement.hidden = hidden;
-  PlacedEntry& entry = entries_.emplace_back();
-  entry.name = placement.name;
-  entry.object = candidate.object;
-  entry.position = candidate.position;
-  entry.orientation = candidate.orientation;
+  // Built whole rather than default-constructed and assigned: the default construction zeroed
+  // both structs first, a tenth of placing an object.
+  const ObjectModel* object = candidate.object;
+  placements_.push_back(ObjectPlacement{object->name, sampler, candidate.position,
+                                        candidate.orientation, attempts, object, hidden});
+  entries_.push_back(
+      PlacedEntry{object->name, object, candidate.position, candidate.orientation, false});
   checker_.added(entries_, entries_.size() - 1);
 }
 

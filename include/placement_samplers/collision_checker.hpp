@@ -98,12 +98,14 @@ class RadiusChecker : public CollisionChecker {
 
   /// Puts entry @p index into its grid, or into the always-scanned list.
   void indexEntry(std::size_t index);
+  /// Entry @p index as the grids store it.
+  Item itemOf(std::size_t index) const;
 
   std::size_t scanLimit_;
   std::unique_ptr<detail::RadiusColumns> columns_;  ///< scanned copy of the items
   std::size_t (*firstOverlap_)(const detail::RadiusColumns&, const detail::RadiusProbe&);
   bool gridMode_ = false;                ///< more than scanLimit_ entries: the grids are in use
-  std::vector<Item> items_;              ///< one per entry, by entry index
+  std::vector<Item> items_;              ///< one per entry, by entry index, in grid mode only
   std::vector<std::int32_t> unbounded_;  ///< entries no cell can hold, ascending
   std::vector<std::unique_ptr<Grid>> grids_;  ///< every grid ever used, kept for their buffers
   std::vector<Grid*> active_;                 ///< grids holding entries of the current scene
