@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 #include "placement_samplers/config_builder.hpp"
@@ -72,10 +73,18 @@ bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepare
       texts[slice].swap(text);
     };
     std::vector<std::thread> pool;
-    for (std::size_t slice = 1; slice < slices; ++slice) {
-      pool.emplace_back(format, slice);
+    std::size_t started = 1;
+    for (; started < slices; ++started) {
+      try {
+        pool.emplace_back(format, started);
+      } catch (const std::system_error&) {
+        break;  // no more threads to be had: this thread formats the rest
+      }
     }
     format(0);
+    for (std::size_t slice = started; slice < slices; ++slice) {
+      format(slice);
+    }
     for (std::thread& t : pool) {
       t.join();
     }
