@@ -2,6 +2,15 @@
 
 #include <algorithm>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+// GCC 12 warns about its own AVX-512 headers (_mm512_undefined_epi32, GCC bug 105593).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#define PLACEMENT_SAMPLERS_X86 1
+#endif
+
 namespace placement_samplers {
 namespace {
 
@@ -31,6 +40,70 @@ void twistTail(std::uint64_t* state) {
   state[kN - 1] = twistWord(state[kN - 1], state[0], state[kM - 1]);
 }
 
+#ifdef PLACEMENT_SAMPLERS_X86
+
+/// Engines seedChainsAvx512() seeds at once: two vectors of 8 chains, so that each one's
+/// multiply latency is filled by the other.
+constexpr std::size_t kWide = 16;
+/// Seed chain words it computes: 0 .. 160, twenty blocks of 8 steps (kManySeedDepth and one).
+constexpr std::size_t kWideDepth = 1 + 8 * 20;
+
+bool haveAvx512dq() {
+  static const bool have = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+  return have;
+}
+
+/// Transposes the 8 x 8 block r[step][lane] in place: r[lane][step] afterwards.
+__attribute__((target("avx512f"))) inline void transpose8x8(__m512i* r) {
+  __m512i t[8];
+  for (int i = 0; i < 8; i += 2) {
+    t[i] = _mm512_unpacklo_epi64(r[i], r[i + 1]);      // lanes 0 2 4 6 of rows i, i + 1
+    t[i + 1] = _mm512_unpackhi_epi64(r[i], r[i + 1]);  // lanes 1 3 5 7
+  }
+  const __m512i lowPairs = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
+  const __m512i highPairs = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  __m512i u[8];
+  for (int i = 0; i < 8; i += 4) {
+    u[i] = _mm512_permutex2var_epi64(t[i], lowPairs, t[i + 2]);           // lanes 0, 4
+    u[i + 1] = _mm512_permutex2var_epi64(t[i + 1], lowPairs, t[i + 3]);   // lanes 1, 5
+    u[i + 2] = _mm512_permutex2var_epi64(t[i], highPairs, t[i + 2]);      // lanes 2, 6
+    u[i + 3] = _mm512_permutex2var_epi64(t[i + 1], highPairs, t[i + 3]);  // lanes 3, 7
+  }
+  const __m512i lowHalves = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11);
+  const __m512i highHalves = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
+  for (int lane = 0; lane < 4; ++lane) {
+    r[lane] = _mm512_permutex2var_epi64(u[lane], lowHalves, u[lane + 4]);
+    r[lane + 4] = _mm512_permutex2var_epi64(u[lane], highHalves, u[lane + 4]);
+  }
+}
+
+/// Words 1 .. kWideDepth - 1 of the seed chains of @p seeds[0 .. 15] into states[e][1 ..]:
+/// the scalar chain, 8 lanes per vector, written 8 words at a time after a transpose.
+__attribute__((target("avx512f,avx512dq"))) void seedChainsAvx512(std::uint64_t* const* states,
+                                                                  const std::uint64_t* seeds) {
+  __m512i chain[2] = {_mm512_loadu_si512(seeds), _mm512_loadu_si512(seeds + 8)};
+  const __m512i multiplier = _mm512_set1_epi64(static_cast<long long>(kSeedMultiplier));
+  for (std::size_t j0 = 1; j0 < kWideDepth; j0 += 8) {
+    __m512i rows[2][8];
+    for (std::size_t step = 0; step < 8; ++step) {
+      const __m512i index = _mm512_set1_epi64(static_cast<long long>(j0 + step));
+      for (int g = 0; g < 2; ++g) {
+        const __m512i mixed = _mm512_xor_si512(chain[g], _mm512_srli_epi64(chain[g], 62));
+        chain[g] = _mm512_add_epi64(_mm512_mullo_epi64(mixed, multiplier), index);
+        rows[g][step] = chain[g];
+      }
+    }
+    for (int g = 0; g < 2; ++g) {
+      transpose8x8(rows[g]);
+      for (int lane = 0; lane < 8; ++lane) {
+        _mm512_storeu_si512(states[8 * g + lane] + j0, rows[g][lane]);
+      }
+    }
+  }
+}
+
+#endif  // PLACEMENT_SAMPLERS_X86
+
 }  // namespace
 
 void Mt19937_64::extendSeed(std::size_t last) {
@@ -46,10 +119,26 @@ void Mt19937_64::extendSeed(std::size_t last) {
 }
 
 void Mt19937_64::seedMany(Mt19937_64* const* engines, const result_type* seeds, std::size_t count) {
+  std::size_t first = 0;
+#ifdef PLACEMENT_SAMPLERS_X86
+  if (haveAvx512dq()) {
+    for (; first + kWide <= count; first += kWide) {
+      std::uint64_t* states[kWide];
+      for (std::size_t e = 0; e < kWide; ++e) {
+        engines[first + e]->seed(seeds[first + e]);
+        states[e] = engines[first + e]->state_;
+      }
+      seedChainsAvx512(states, seeds + first);
+      for (std::size_t e = 0; e < kWide; ++e) {
+        engines[first + e]->seeded_ = kWideDepth;
+      }
+    }
+  }
+#endif
   // Lockstep over groups of up to 8 engines: each step of one chain waits for its previous
   // word (multiply latency), so the steps of the other chains fill the gaps.
   constexpr std::size_t kGroup = 8;
-  for (std::size_t first = 0; first < count; first += kGroup) {
+  for (; first < count; first += kGroup) {
     const std::size_t n = std::min(kGroup, count - first);
     std::uint64_t word[kGroup] = {};
     for (std::size_t e = 0; e < n; ++e) {

@@ -45,7 +45,7 @@ class SceneGenerator::Worker {
       return;
     }
     if (batchEngines_.empty()) {
-      batchEngines_.resize(kBatch);  // 20 kB of state: only for requests of several scenes
+      batchEngines_.resize(kBatch);  // 40 kB of state: only for requests of several scenes
     }
     std::uint64_t seeds[kBatch];
     Engine* engines[kBatch];
@@ -67,7 +67,7 @@ class SceneGenerator::Worker {
   }
 
   /// Scenes seeded together by runBatch().
-  static constexpr std::size_t kBatch = 8;
+  static constexpr std::size_t kBatch = 16;
 
  private:
   SceneResult sample(std::uint64_t seed, std::uint64_t index) {

@@ -41,12 +41,13 @@ class Mt19937_64 {
   }
 
   /// Seeds @p count engines at once, as engines[i]->seed(seeds[i]) would, and computes the
-  /// part of each seed chain that the first draws need (kManySeedDepth words). Why: the chain
-  /// is serial, about 1.6 ns a word, but independent chains run side by side on one core, so
-  /// eight of them cost little more than one (docs/benchmarks.md).
+  /// part of each seed chain that the first draws need (at least kManySeedDepth words). Why:
+  /// the chain is serial, about 1.6 ns a word, but independent chains run side by side on one
+  /// core: eight at a time in scalar code, sixteen in two AVX-512 vectors where the CPU has
+  /// them (docs/benchmarks.md).
   static void seedMany(Mt19937_64* const* engines, const result_type* seeds, std::size_t count);
 
-  /// Words of the seed chain seedMany() computes: enough for the first four draws.
+  /// Words of the seed chain seedMany() computes at least: enough for the first four draws.
   static constexpr std::size_t kManySeedDepth = kShiftSize + 4;
 
   /// The next number of the sequence.

@@ -179,13 +179,20 @@ TEST(Mt19937_64, WorksWithStandardDistributions) {
   }
 }
 
-// seedMany() as a batch uses it: groups of 1 to 19 engines (one, several and a partial group
-// of eight), engines that drew before, then draws across every regeneration.
+// seedMany() as a batch uses it: 1 to 19, 32 and 35 engines (the scalar groups of eight, whole
+// and partial, and on AVX-512 machines the vector path's groups of 16 with a scalar rest),
+// engines that drew before, then draws across every regeneration.
 TEST(Mt19937_64, SeedManyGivesTheNumbersOfSeed) {
   const std::vector<std::uint64_t> seeds = testSeeds();
-  std::vector<Mt19937_64> engines(19);
+  std::vector<Mt19937_64> engines(35);
+  std::vector<std::size_t> counts;
+  for (std::size_t count = 1; count <= 19; ++count) {
+    counts.push_back(count);
+  }
+  counts.push_back(32);
+  counts.push_back(35);
   std::size_t used = 0;
-  for (std::size_t count = 1; count <= engines.size(); ++count) {
+  for (const std::size_t count : counts) {
     std::vector<Mt19937_64*> pointers;
     std::vector<std::uint64_t> batch;
     for (std::size_t k = 0; k < count; ++k) {
@@ -197,8 +204,8 @@ TEST(Mt19937_64, SeedManyGivesTheNumbersOfSeed) {
     for (std::size_t k = 0; k < count; ++k) {
       std::mt19937_64 reference(batch[k]);
       for (int i = 0; i < kDraws / 2; ++i) {
-        ASSERT_EQ(engines[k](), reference()) << "seed " << batch[k] << ", group of " << count
-                                             << ", engine " << k << ", draw " << i;
+        ASSERT_EQ(engines[k](), reference())
+            << "seed " << batch[k] << ", group of " << count << ", engine " << k << ", draw " << i;
       }
     }
   }
