@@ -14,7 +14,7 @@ void SampleContext::clear() {
   checker_.clear();
 }
 
-void SampleContext::addFixture(const std::string& name, const ObjectModel* object,
+void SampleContext::addFixture(std::string_view name, const ObjectModel* object,
                                const Eigen::Vector3d& position,
                                const Eigen::Quaterniond& orientation) {
   entries_.push_back(PlacedEntry{name, object, position, orientation, true});
@@ -22,7 +22,8 @@ void SampleContext::addFixture(const std::string& name, const ObjectModel* objec
 }
 
 void SampleContext::addPlacement(ObjectPlacement placement) {
-  entries_.push_back(PlacedEntry{placement.name, placement.object, placement.position,
+  // The entry names the object: placement.name moves with the placements' buffer.
+  entries_.push_back(PlacedEntry{placement.object->name, placement.object, placement.position,
                                  placement.orientation, false});
   checker_.added(entries_, entries_.size() - 1);
   placements_.push_back(std::move(placement));

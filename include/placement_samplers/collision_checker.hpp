@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "placement_samplers/object_model.hpp"
@@ -18,7 +19,9 @@ struct RadiusProbe;
 
 /// Something already in the scene: a fixture or an object placed earlier in the scene.
 struct PlacedEntry {
-  std::string name;
+  /// The object's or fixture's name, owned by the configuration or the request: a view, so
+  /// that placing an object copies no string.
+  std::string_view name;
   const ObjectModel* object = nullptr;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< [m]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();

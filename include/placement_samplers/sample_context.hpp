@@ -24,8 +24,9 @@ class SampleContext {
   /// Forget every entry and placement, keep the buffers (start of a scene).
   void clear();
   /// Adds a fixture: checked against, never moved, not part of the placements.
-  void addFixture(const std::string& name, const ObjectModel* object,
-                  const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation);
+  /// @p name must outlive the scene (failure messages read it).
+  void addFixture(std::string_view name, const ObjectModel* object, const Eigen::Vector3d& position,
+                  const Eigen::Quaterniond& orientation);
   /// Records a new placement and makes it an obstacle for the following ones.
   void addPlacement(ObjectPlacement placement);
   /// The same for @p candidate accepted by sampler @p sampler after @p attempts samples, built

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -66,7 +67,8 @@ struct Scene {
            const Eigen::Quaterniond& orientation = Eigen::Quaterniond::Identity(),
            bool fixture = false) {
     objects.push_back(object);
-    entries.push_back(PlacedEntry{name, object.get(), position, orientation, fixture});
+    names.push_back(name);  // entries hold views
+    entries.push_back(PlacedEntry{names.back(), object.get(), position, orientation, fixture});
     checker->added(entries, entries.size() - 1);
   }
 
@@ -84,6 +86,7 @@ struct Scene {
   std::unique_ptr<CollisionChecker> checker;
   std::vector<PlacedEntry> entries;
   std::vector<ObjectPtr> objects;  // keeps every object alive as long as the checker
+  std::deque<std::string> names;   // stable addresses for the entries' names
 };
 
 Scene fclScene(double margin = 0.0) { return Scene(std::make_unique<FclChecker>(margin)); }

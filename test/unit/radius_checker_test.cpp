@@ -120,7 +120,7 @@ TEST(RadiusChecker, GridsAgreeWithTheScanOnRandomScenes) {
       const int count = scene == 0 ? 30 : scene == 1 ? 150 : 5;
       for (int e = 0; e < count; ++e) {
         PlacedEntry entry;
-        entry.name = "e" + std::to_string(e);
+        entry.name = "entry";
         entry.object = world.object();
         entry.position = world.position();
         entries.push_back(entry);
