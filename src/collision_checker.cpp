@@ -28,6 +28,8 @@ constexpr double kCellPerRadius = 4.0;
 constexpr int kMinExponent = -20;
 /// Radii from here on go to the always-scanned list: their squared reach would overflow.
 constexpr double kHugeRadius = 1e150;
+/// Scans of at most this many entries are done inline, not by a vector kernel.
+constexpr std::size_t kInlineScan = 4;
 /// Cell indices are clamped to +/- 2^52.
 constexpr double kCellLimit = 4503599627370496.0;
 
@@ -354,8 +356,10 @@ std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& ent
   if (!gridMode_ || !std::isfinite(p.x) || !std::isfinite(p.y) ||
       !(std::abs(p.radius) < kHugeRadius)) {
     // Few entries, or a candidate no range of cells can bound: the scan, in index order.
-    const std::size_t i =
-        firstOverlap_(*columns_, detail::RadiusProbe{p.x, p.y, p.z, p.radius, p.bottom});
+    const detail::RadiusProbe probe{p.x, p.y, p.z, p.radius, p.bottom};
+    // A handful is cheaper here than setting up a vector kernel (Stack: one entry).
+    const std::size_t i = n <= kInlineScan ? detail::firstOverlapInline(*columns_, probe)
+                                           : firstOverlap_(*columns_, probe);
     return i < n ? static_cast<std::ptrdiff_t>(i) : kNone;
   }
   const auto none = static_cast<std::int32_t>(n);

@@ -38,16 +38,7 @@ void RadiusColumns::push(double x, double y, double z, double radius, double top
 namespace {
 
 std::size_t firstOverlapScalar(const RadiusColumns& c, const RadiusProbe& p) {
-  const std::size_t n = c.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double dx = p.x - c.x()[i];
-    const double dy = p.y - c.y()[i];
-    const double reach = c.radius()[i] + p.radius;
-    if ((dx * dx + dy * dy <= reach * reach) & (p.z - c.z()[i] <= c.top()[i] - p.bottom)) {
-      return i;
-    }
-  }
-  return n;
+  return firstOverlapInline(c, p);
 }
 
 #ifdef PLACEMENT_SAMPLERS_X86

@@ -35,6 +35,20 @@ struct RadiusProbe {
   double x, y, z, radius, bottom;
 };
 
+/// The scalar kernel, inline: the lowest index whose entry overlaps @p p, or columns.size().
+inline std::size_t firstOverlapInline(const RadiusColumns& c, const RadiusProbe& p) {
+  const std::size_t n = c.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dx = p.x - c.x()[i];
+    const double dy = p.y - c.y()[i];
+    const double reach = c.radius()[i] + p.radius;
+    if ((dx * dx + dy * dy <= reach * reach) & (p.z - c.z()[i] <= c.top()[i] - p.bottom)) {
+      return i;
+    }
+  }
+  return n;
+}
+
 /// The lowest index whose entry overlaps @p p under robosuite's test, or columns.size().
 using FirstOverlapFn = std::size_t (*)(const RadiusColumns& columns, const RadiusProbe& p);
 
