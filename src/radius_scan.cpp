@@ -37,10 +37,6 @@ void RadiusColumns::push(double x, double y, double z, double radius, double top
 
 namespace {
 
-std::size_t firstOverlapScalar(const RadiusColumns& c, const RadiusProbe& p) {
-  return firstOverlapInline(c, p);
-}
-
 #ifdef PLACEMENT_SAMPLERS_X86
 
 /// Entries are compared 64 at a time without a branch on the outcome: where the first hit
@@ -149,7 +145,7 @@ ScanKernel bestScanKernel() {
 FirstOverlapFn scanKernel(ScanKernel kernel) {
   switch (kernel) {
     case ScanKernel::Scalar:
-      return &firstOverlapScalar;
+      return &firstOverlapInline;
 #ifdef PLACEMENT_SAMPLERS_X86
     case ScanKernel::Avx2:
       return __builtin_cpu_supports("avx2") ? &firstOverlapAvx2 : nullptr;

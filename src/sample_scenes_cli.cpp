@@ -1,10 +1,10 @@
 #include "placement_samplers/sample_scenes_cli.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
-#include <system_error>
 #include <thread>
 
 #include "placement_samplers/config_builder.hpp"
@@ -12,6 +12,7 @@
 #include "placement_samplers/random.hpp"
 #include "placement_samplers/scene_generator.hpp"
 #include "placement_samplers/scene_json.hpp"
+#include "parallel.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -72,22 +73,12 @@ bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepare
       }
       texts[slice].swap(text);
     };
-    std::vector<std::thread> pool;
-    std::size_t started = 1;
-    for (; started < slices; ++started) {
-      try {
-        pool.emplace_back(format, started);
-      } catch (const std::system_error&) {
-        break;  // no more threads to be had: this thread formats the rest
+    std::atomic<std::size_t> nextSlice{0};
+    detail::runOnThreads(static_cast<unsigned>(slices), [&] {
+      for (std::size_t slice = nextSlice++; slice < slices; slice = nextSlice++) {
+        format(slice);
       }
-    }
-    format(0);
-    for (std::size_t slice = started; slice < slices; ++slice) {
-      format(slice);
-    }
-    for (std::thread& t : pool) {
-      t.join();
-    }
+    });
     for (std::size_t slice = 0; slice < slices; ++slice) {
       out.write(texts[slice].data(), static_cast<std::streamsize>(texts[slice].size()));
     }

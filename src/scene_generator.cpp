@@ -4,15 +4,13 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <optional>
 #include <sstream>
-#include <system_error>
 #include <thread>
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/object_config.hpp"
+#include "parallel.hpp"
 
 namespace placement_samplers {
 
@@ -241,47 +239,22 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
       static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(count, 1)));
   std::atomic<std::uint64_t> next{0};
   const auto deadline = deadlineOf(request);
-  // An exception in any worker (out of memory) stops the others and reaches the caller.
-  std::mutex errorMutex;
-  std::exception_ptr error;
   auto work = [&] {
-    try {
-      Worker worker(request, config_->collisionMargin);
-      worker.setDeadline(deadline);
-      // Small chunks keep the threads balanced when some scenes take many attempts.
-      constexpr std::uint64_t kChunk = 16;
-      for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
-           begin = next.fetch_add(kChunk)) {
-        const std::uint64_t end = std::min(count, begin + kChunk);
-        for (std::uint64_t i = begin; i < end; i += Worker::kBatch) {
-          const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(Worker::kBatch, end - i));
-          worker.runBatch(seed, first + i, n, &results[i]);
-        }
-      }
-    } catch (...) {
-      next = count;
-      std::lock_guard<std::mutex> lock(errorMutex);
-      if (!error) {
-        error = std::current_exception();
+    Worker worker(request, config_->collisionMargin);
+    worker.setDeadline(deadline);
+    // Small chunks keep the threads balanced when some scenes take many attempts.
+    constexpr std::uint64_t kChunk = 16;
+    for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
+         begin = next.fetch_add(kChunk)) {
+      const std::uint64_t end = std::min(count, begin + kChunk);
+      for (std::uint64_t i = begin; i < end; i += Worker::kBatch) {
+        const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(Worker::kBatch, end - i));
+        worker.runBatch(seed, first + i, n, &results[i]);
       }
     }
   };
-  // The calling thread is one of the workers: one thread less to start and join.
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) {
-    try {
-      pool.emplace_back(work);
-    } catch (const std::system_error&) {
-      break;  // no more threads to be had: the ones running share the scenes
-    }
-  }
-  work();
-  for (std::thread& t : pool) {
-    t.join();
-  }
-  if (error) {
-    std::rethrow_exception(error);
-  }
+  // An exception in any worker (out of memory) stops the others and reaches the caller.
+  detail::runOnThreads(threads, work, [&] { next = count; });
   return results;
 }
 
