@@ -15,7 +15,7 @@ PS_PACKAGES=(
   liburdf-dev liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev
   libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
   librostest-dev python3-rostest python3-rospy python3-nose libgtest-dev libbenchmark-dev
-  libyaml-cpp-dev
+  libyaml-cpp-dev zlib1g-dev catkin-lint
 )
 
 ps_sudo() {
