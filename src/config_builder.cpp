@@ -1,5 +1,7 @@
 #include "placement_samplers/config_builder.hpp"
 
+#include <algorithm>
+#include <iterator>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -11,11 +13,18 @@
 namespace placement_samplers {
 namespace {
 
+/// The keys of the configuration's top level, besides the named samplers' maps.
+constexpr const char* kTopLevelKeys[] = {
+    "frame_id",         "tf_prefix", "seed",    "collision_check", "collision_margin",
+    "max_attempts",     "objects",   "fixtures", "samplers",       "hide",
+    "threads",          "max_scenes_per_request", "max_request_seconds"};
+
 /// State of one build: the names that a reference may use at each point of the sampling order.
 class Builder {
  public:
-  Builder(SceneConfig& config, const BuildOptions& options)
-      : config_(config),
+  Builder(const ConfigNode& root, SceneConfig& config, const BuildOptions& options)
+      : root_(root),
+        config_(config),
         options_(options),
         meshes_(options.packageResolver, options.baseDirectory) {}
 
@@ -60,19 +69,48 @@ class Builder {
   /// passes down (set when an enclosing composite's sample_args names one).
   void samplers(const ConfigNode& list, SequentialCompositeSampler& parent,
                 const std::optional<Reference>& inherited) {
-    for (const ConfigNode& s : list.elements()) {
-      SampleArgs args = sampleArgs(s);
+    for (const ConfigNode& item : list.elements()) {
+      const SamplerItem s = resolve(item);
+      SampleArgs args = sampleArgs(*s.params);
       const std::optional<Reference> effective = args.reference ? args.reference : inherited;
-      const std::string type = s.get("type") ? s.at("type").asString() : "uniform";
+      const ConfigNode* typeNode = s.params->get("type") ? s.params->get("type") : s.typeNode;
+      const std::string type = typeNode ? typeNode->asString() : "uniform";
       if (type == "uniform") {
         parent.appendSampler(uniform(s, effective), args);
       } else if (type == "sequential") {
-        s.checkKeys({"name", "type", "samplers", "sample_args"});
+        checkSamplerKeys(s, {"type", "samplers", "sample_args"});
         auto composite = std::make_shared<SequentialCompositeSampler>(samplerName(s));
-        samplers(s.at("samplers"), *composite, effective);
-        wrap(s, [&] { parent.appendSampler(composite, args); });
+        samplers(s.params->at("samplers"), *composite, effective);
+        wrap(*s.params, [&] { parent.appendSampler(composite, args); });
       } else {
-        s.at("type").fail("expected uniform or sequential, got '" + type + "'");
+        typeNode->fail("expected uniform or sequential, got '" + type + "'");
+      }
+    }
+  }
+
+  /// The names of samplers whose parameters live in a top-level map of their own (the list
+  /// item is only the name, as costmap_2d's plugin lists): `rosparam set` can then change one
+  /// parameter. Lenient: the build reports what is malformed.
+  static void namedSamplers(const ConfigNode& root, const ConfigNode& list,
+                            std::vector<std::string>& names, int depth = 0) {
+    if (!list.isList() || depth > 64) {
+      return;
+    }
+    for (const ConfigNode& item : list.elements()) {
+      const std::string* name = nullptr;
+      if (item.isString()) {
+        name = &item.asString();
+      } else if (isNameOnly(item) && item.at("name").isString()) {
+        name = &item.at("name").asString();
+      }
+      const ConfigNode* params = name ? root.get(*name) : (item.isMap() ? &item : nullptr);
+      if (name && std::find(names.begin(), names.end(), *name) == names.end()) {
+        names.push_back(*name);
+      }
+      if (params && params->isMap()) {
+        if (const ConfigNode* inner = params->get("samplers")) {
+          namedSamplers(root, *inner, names, depth + 1);
+        }
       }
     }
   }
@@ -96,9 +134,83 @@ class Builder {
     }
   }
 
-  std::string samplerName(const ConfigNode& s) {
-    const ConfigNode& n = s.at("name");
-    const std::string& name = n.asString();
+  /// One item of a samplers list: where its parameters are read and what names it.
+  struct SamplerItem {
+    const ConfigNode* params;    ///< the inline map, or the top-level map of its name
+    const ConfigNode* nameNode;  ///< errors about the name point here
+    const ConfigNode* typeNode;  ///< `type` given in the list item of the named form, or null
+    bool named;                  ///< parameters in a top-level map of its name
+    std::string name;
+  };
+
+  /// A list item that only names its sampler: {name: N} or {name: N, type: T}.
+  static bool isNameOnly(const ConfigNode& item) {
+    if (!item.isMap() || item.get("name") == nullptr) {
+      return false;
+    }
+    for (const auto& entry : item.entries()) {
+      if (entry.first != "name" && entry.first != "type") {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  SamplerItem resolve(const ConfigNode& item) {
+    SamplerItem s{&item, nullptr, nullptr, false, ""};
+    if (item.isString() || (isNameOnly(item) && root_.get(item.at("name").asString()))) {
+      s.named = true;
+      s.nameNode = item.isString() ? &item : &item.at("name");
+      s.typeNode = item.isString() ? nullptr : item.get("type");
+      s.name = s.nameNode->asString();
+      if (isTopLevelKey(s.name)) {
+        s.nameNode->fail("sampler name '" + s.name +
+                         "' is a top-level key of the configuration; choose another name");
+      }
+      s.params = root_.get(s.name);
+      if (s.params == nullptr) {
+        s.nameNode->fail("sampler '" + s.name + "' has no parameters: expected a map '" + s.name +
+                         "' at the top level of the configuration");
+      }
+      if (!s.params->isMap()) {
+        s.params->fail("expected the parameters of sampler '" + s.name + "' (a map), got " +
+                       ConfigNode::typeName(s.params->type()));
+      }
+      if (s.typeNode && s.params->get("type")) {
+        s.params->at("type").fail("the type of sampler '" + s.name +
+                                  "' is also given in its list item; give it once");
+      }
+      return s;
+    }
+    if (!item.isMap()) {
+      item.fail("expected a sampler: a map of its parameters, or its name with the parameters "
+                "in a top-level map of that name");
+    }
+    s.nameNode = &item.at("name");
+    s.name = s.nameNode->asString();
+    return s;
+  }
+
+  /// Unknown keys are typos; `name` is the map's key in the named form.
+  static void checkSamplerKeys(const SamplerItem& s, std::vector<std::string> allowed) {
+    if (!s.named) {
+      allowed.insert(allowed.begin(), "name");
+    }
+    s.params->checkKeys(allowed);
+  }
+
+  static bool isTopLevelKey(const std::string& key) {
+    for (const char* k : kTopLevelKeys) {
+      if (key == k) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  std::string samplerName(const SamplerItem& s) {
+    const ConfigNode& n = *s.nameNode;
+    const std::string& name = s.name;
     if (name.empty()) {
       n.fail("expected a non-empty sampler name");
     }
@@ -147,12 +259,13 @@ class Builder {
     return args;
   }
 
-  std::shared_ptr<UniformRandomSampler> uniform(const ConfigNode& s,
+  std::shared_ptr<UniformRandomSampler> uniform(const SamplerItem& item,
                                                 const std::optional<Reference>& reference) {
-    s.checkKeys({"name", "type", "objects", "x_range", "y_range", "rotation", "rotation_axis",
-                 "ensure_object_boundary_in_range", "ensure_valid_placement", "reference_pos",
-                 "z_offset", "sample_args", "max_attempts"});
-    const std::string name = samplerName(s);
+    checkSamplerKeys(item, {"type", "objects", "x_range", "y_range", "rotation", "rotation_axis",
+                            "ensure_object_boundary_in_range", "ensure_valid_placement",
+                            "reference_pos", "z_offset", "sample_args", "max_attempts"});
+    const std::string name = samplerName(item);
+    const ConfigNode& s = *item.params;
     UniformSamplerParams p;
     p.maxAttempts = config_.maxAttempts;
     if (const ConfigNode* n = s.get("x_range")) {
@@ -244,6 +357,7 @@ class Builder {
     return Eigen::Vector2d(v[0], v[1]);
   }
 
+  const ConfigNode& root_;
   SceneConfig& config_;
   const BuildOptions& options_;
   MeshLoader meshes_;                // each mesh file read once per build
@@ -274,9 +388,11 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
 }
 
 std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const BuildOptions& options) {
-  root.checkKeys({"frame_id", "tf_prefix", "seed", "collision_check", "collision_margin",
-                  "max_attempts", "objects", "fixtures", "samplers", "hide", "threads",
-                  "max_scenes_per_request", "max_request_seconds"});
+  std::vector<std::string> allowed(std::begin(kTopLevelKeys), std::end(kTopLevelKeys));
+  if (const ConfigNode* n = root.get("samplers")) {
+    Builder::namedSamplers(root, *n, allowed);
+  }
+  root.checkKeys(allowed);
   auto config = std::make_shared<SceneConfig>();
   if (const ConfigNode* n = root.get("frame_id")) {
     config->frameId = n->asString();
@@ -286,6 +402,10 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
   }
   if (const ConfigNode* n = root.get("tf_prefix")) {
     config->tfPrefix = n->asString();
+    if (!config->tfPrefix->empty() && config->tfPrefix->front() == '/') {
+      n->fail("expected a prefix without a leading '/' (tf2 frame names have none), got '" +
+              *config->tfPrefix + "'");
+    }
   }
   if (const ConfigNode* n = root.get("seed")) {
     config->seed = n->asUInt64();
@@ -315,7 +435,7 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
       n->fail("expected a positive duration in [s]");
     }
   }
-  Builder builder(*config, options);
+  Builder builder(root, *config, options);
   if (const ConfigNode* n = root.get("objects")) {
     builder.objects(*n);
   }

@@ -1,5 +1,7 @@
 #include "placement_samplers/config_node.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <sstream>
 
@@ -214,15 +216,15 @@ Eigen::Vector3d ConfigNode::asVector3() const {
 }
 
 void ConfigNode::checkKeys(std::initializer_list<const char*> allowed) const {
+  checkKeys(std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+void ConfigNode::checkKeys(const std::vector<std::string>& allowed) const {
   for (const auto& entry : entries()) {
-    bool known = false;
-    for (const char* key : allowed) {
-      known = known || entry.first == key;
-    }
-    if (!known) {
+    if (std::find(allowed.begin(), allowed.end(), entry.first) == allowed.end()) {
       std::string list;
-      for (const char* key : allowed) {
-        list += (list.empty() ? "" : ", ") + std::string(key);
+      for (const std::string& key : allowed) {
+        list += (list.empty() ? "" : ", ") + key;
       }
       fail("unknown key '" + entry.first + "' (expected one of: " + list + ")");
     }

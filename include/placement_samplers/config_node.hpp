@@ -63,6 +63,7 @@ class ConfigNode {
   Eigen::Vector3d asVector3() const;
   /// Throws when this map holds a key outside @p allowed (a typo, most likely).
   void checkKeys(std::initializer_list<const char*> allowed) const;
+  void checkKeys(const std::vector<std::string>& allowed) const;
   /// Throws "<path>: <what>".
   [[noreturn]] void fail(const std::string& what) const;
 

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,9 @@ struct FixtureSpec {
 /// and the node alike.
 struct SceneConfig {
   std::string frameId = "world";        ///< parent frame of every pose
-  std::string tfPrefix = "placement/";  ///< child frame of object NAME is tfPrefix + NAME
+  /// Child frame of object NAME is tfPrefix + NAME; unset: the node uses its own name and
+  /// namespace ("robot1/placement_server/"), so two nodes never share a frame.
+  std::optional<std::string> tfPrefix;
   std::uint64_t seed = 0;               ///< 0 = a fresh seed from std::random_device
   CollisionMode collisionCheck = CollisionMode::Radius;
   double collisionMargin = 0.0;       ///< clearance in the exact modes [m]

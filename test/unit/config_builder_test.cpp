@@ -11,6 +11,7 @@
 #include "placement_samplers/config_builder.hpp"
 #include "placement_samplers/config_node.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/scene_generator.hpp"
 #include "placement_samplers/sequential_composite_sampler.hpp"
 #include "placement_samplers/uniform_random_sampler.hpp"
 #include "test_helpers.hpp"
@@ -54,7 +55,7 @@ const UniformRandomSampler& uniformNamed(const SceneConfig& config, const std::s
 TEST(ConfigBuilder, EmptyConfigurationGivesDefaults) {
   const auto config = buildFromYaml("");
   EXPECT_EQ(config->frameId, "world");
-  EXPECT_EQ(config->tfPrefix, "placement/");
+  EXPECT_FALSE(config->tfPrefix.has_value());  // the node uses its own name
   EXPECT_EQ(config->seed, 0u);
   EXPECT_EQ(config->collisionCheck, CollisionMode::Radius);
   EXPECT_EQ(config->maxAttempts, 5000u);
@@ -74,7 +75,7 @@ collision_margin: 0
 max_attempts: 100
 )");
   EXPECT_EQ(config->frameId, "map");
-  EXPECT_EQ(config->tfPrefix, "");
+  EXPECT_EQ(config->tfPrefix, std::optional<std::string>(""));
   // Above 2^63: kept as digits by the YAML reader and read back exactly.
   EXPECT_EQ(config->seed, 18446744073709551615ull);
   EXPECT_EQ(config->collisionMargin, 0.0);
@@ -214,6 +215,82 @@ samplers:
             "nothing for U(0, 2pi)");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, rotation: [0, 1, 2]}\n"),
             "samplers[0].rotation: expected a list of 2 numbers, got a list of 3 elements");
+}
+
+// costmap_2d's idiom: the list names the samplers in order and each one's parameters are in a
+// top-level map of its name, so `rosparam set /node/TableSampler/x_range` changes one of them.
+TEST(ConfigBuilder, NamedSamplersAreTheSameSamplersAsInlineOnes) {
+  const std::string inlineForm = kObjects + R"(
+samplers:
+  - {name: PlateSampler, objects: [plate], x_range: [-0.3, 0.3], y_range: [-0.2, 0.2],
+     sample_args: {reference: table}}
+  - name: Nested
+    type: sequential
+    sample_args: {reference: plate}
+    samplers:
+      - {name: CupSampler, objects: [cup], ensure_valid_placement: false,
+         ensure_object_boundary_in_range: false}
+  - {name: TableSampler, objects: [cube, ball], x_range: [-0.4, 0.4], y_range: [-0.4, 0.4],
+     rotation: [-0.5, 0.5], sample_args: {reference: table}}
+)";
+  const std::string namedForm = kObjects + R"(
+samplers: [PlateSampler, {name: Nested, type: sequential}, TableSampler]
+PlateSampler: {objects: [plate], x_range: [-0.3, 0.3], y_range: [-0.2, 0.2],
+               sample_args: {reference: table}}
+Nested: {sample_args: {reference: plate}, samplers: [CupSampler]}
+CupSampler: {objects: [cup], ensure_valid_placement: false,
+             ensure_object_boundary_in_range: false}
+TableSampler: {objects: [cube, ball], x_range: [-0.4, 0.4], y_range: [-0.4, 0.4],
+               rotation: [-0.5, 0.5], sample_args: {reference: table}}
+)";
+  const SceneGenerator inlineScenes(buildFromYaml(inlineForm));
+  const SceneGenerator namedScenes(buildFromYaml(namedForm));
+  const PreparedRequest a = inlineScenes.prepare(SampleRequest());
+  const PreparedRequest b = namedScenes.prepare(SampleRequest());
+  for (std::uint64_t seed = 1; seed <= 50; ++seed) {
+    const SceneResult x = inlineScenes.sampleScene(a, seed, 0);
+    const SceneResult y = namedScenes.sampleScene(b, seed, 0);
+    ASSERT_TRUE(x.success) << x.message;
+    ASSERT_EQ(x.placements.size(), 4u);
+    ASSERT_EQ(y.placements.size(), x.placements.size());
+    for (std::size_t i = 0; i < x.placements.size(); ++i) {
+      EXPECT_EQ(y.placements[i].name, x.placements[i].name);
+      EXPECT_EQ(y.placements[i].sampler, x.placements[i].sampler);
+      EXPECT_EQ(y.placements[i].position, x.placements[i].position) << "seed " << seed;
+    }
+  }
+  const auto config = buildFromYaml(namedForm);
+  EXPECT_EQ(uniformNamed(*config, "PlateSampler").params().yRange, Eigen::Vector2d(-0.2, 0.2));
+}
+
+TEST(ConfigBuilder, NamedSamplerErrorsNameThePath) {
+  EXPECT_EQ(buildError(kObjects + "samplers: [TableSampler]\n"),
+            "samplers[0]: sampler 'TableSampler' has no parameters: expected a map "
+            "'TableSampler' at the top level of the configuration");
+  EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: [1, 2]\n"),
+            "S: expected the parameters of sampler 'S' (a map), got a list");
+  EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {objects: [cube], x_rnage: [0, 1]}\n"),
+            "S: unknown key 'x_rnage' (expected one of: type, objects, x_range, y_range, "
+            "rotation, rotation_axis, ensure_object_boundary_in_range, ensure_valid_placement, "
+            "reference_pos, z_offset, sample_args, max_attempts)");
+  EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {name: S}\n"),
+            "S: unknown key 'name' (expected one of: type, objects, x_range, y_range, "
+            "rotation, rotation_axis, ensure_object_boundary_in_range, ensure_valid_placement, "
+            "reference_pos, z_offset, sample_args, max_attempts)");
+  EXPECT_EQ(buildError(kObjects + "samplers: [{name: S, type: uniform}]\nS: {type: uniform}\n"),
+            "S.type: the type of sampler 'S' is also given in its list item; give it once");
+  EXPECT_EQ(buildError(kObjects + "samplers: [hide]\n"),
+            "samplers[0]: sampler name 'hide' is a top-level key of the configuration; choose "
+            "another name");
+  EXPECT_EQ(buildError(kObjects + "samplers: [S, S]\nS: {objects: []}\n"),
+            "samplers[1]: sampler name 'S' is already used by another sampler");
+  EXPECT_EQ(buildError(kObjects + "samplers: [3]\n"),
+            "samplers[0]: expected a sampler: a map of its parameters, or its name with the "
+            "parameters in a top-level map of that name");
+  // A top-level map no list names is still a typo.
+  EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {objects: []}\nT: {objects: []}\n")
+                .substr(0, 32),
+            "configuration: unknown key 'T' (");
 }
 
 TEST(ConfigBuilder, UnknownKeysNameThePath) {
