@@ -11,11 +11,25 @@ import rospy
 from placement_samplers.srv import SamplePlacements, SamplePlacementsRequest
 
 
+def bounded(name, high):
+    """An argparse type: an integer in [0, high], else a usage error naming the option."""
+    def parse(text):
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError("%s must be an integer, got %r" % (name, text))
+        if not 0 <= value <= high:
+            raise argparse.ArgumentTypeError("%s must be in [0, %d], got %d" % (name, high, value))
+        return value
+    return parse
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--service", default="/placement_server/sample_placements")
-    parser.add_argument("--seed", type=int, default=0, help="0 = the node picks one")
-    parser.add_argument("--scenes", type=int, default=1)
+    parser.add_argument("--seed", type=bounded("--seed", 2**64 - 1), default=0,
+                        help="0 = the node picks one")
+    parser.add_argument("--scenes", type=bounded("--scenes", 2**32 - 1), default=1)
     parser.add_argument("--sampler", default="", help="'' = the root composite")
     parser.add_argument("--dry-run", action="store_true", help="broadcast nothing")
     parser.add_argument("--timeout", type=float, default=30.0, help="wait for the service [s]")

@@ -3,7 +3,11 @@
 # Source it; it defines ps_install, ps_env and ps_build.
 
 PS_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-PS_BUILD="$PS_ROOT/build"
+# The build lives next to the checkout, not inside it: rosrun ignores every program under the
+# package's own build/, and a build folder of any other name inside the package, or whose path
+# starts with the package's (checkout_build/), gives it two copies of each Python script to
+# choose from. PLACEMENT_SAMPLERS_BUILD chooses another place.
+PS_BUILD="${PLACEMENT_SAMPLERS_BUILD:-$(dirname "$PS_ROOT")/build_$(basename "$PS_ROOT")}"
 
 PS_PACKAGES=(
   cmake g++ make catkin ros-core ros-core-dev rosbash
@@ -50,19 +54,20 @@ ps_env() {
   unset ROS_IP
 }
 
-# Configures and builds into build/. The second configure stores the PYTHONPATH that python
-# rostests need (the first one caches it empty).
+# Configures and builds into $PS_BUILD. The second configure stores the PYTHONPATH that python
+# rostests need (the first one caches it empty). Returns non-zero at the first failing step,
+# also when called where bash ignores `set -e` (in an `if`, or left of `||`).
 ps_build() {
   local fresh=0
   [ -f "$PS_BUILD/CMakeCache.txt" ] || fresh=1
-  cmake -S "$PS_ROOT" -B "$PS_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  make -C "$PS_BUILD" -j"$(nproc)" all tests
+  cmake -S "$PS_ROOT" -B "$PS_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null || return 1
+  make -C "$PS_BUILD" -j"$(nproc)" all tests || return 1
   if [ "$fresh" -eq 1 ]; then
-    cmake "$PS_BUILD" >/dev/null
+    cmake "$PS_BUILD" >/dev/null || return 1
   fi
 }
 
-# Sources build/devel/setup.bash (it fails under set -u).
+# Sources the build's devel/setup.bash (it fails under set -u).
 ps_source() {
   set +u
   # shellcheck disable=SC1091

@@ -17,7 +17,8 @@ namespace {
 constexpr const char* kTopLevelKeys[] = {
     "frame_id",         "tf_prefix", "seed",    "collision_check", "collision_margin",
     "max_attempts",     "objects",   "fixtures", "samplers",       "hide",
-    "threads",          "max_scenes_per_request", "max_request_seconds"};
+    "threads",          "max_scenes_per_request", "max_request_seconds", "tf_static",
+    "tf_rate"};
 
 /// State of one build: the names that a reference may use at each point of the sampling order.
 class Builder {
@@ -433,6 +434,15 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
     config->maxRequestSeconds = n->asDouble();
     if (config->maxRequestSeconds <= 0.0) {
       n->fail("expected a positive duration in [s]");
+    }
+  }
+  if (const ConfigNode* n = root.get("tf_static")) {
+    config->tfStatic = n->asBool();
+  }
+  if (const ConfigNode* n = root.get("tf_rate")) {
+    config->tfRate = n->asDouble();
+    if (!(config->tfRate >= 0.1 && config->tfRate <= 1000.0)) {
+      n->fail("expected a rate in [0.1, 1000] [Hz]");
     }
   }
   Builder builder(root, *config, options);

@@ -118,6 +118,26 @@ bool isUnit(const Eigen::Quaterniond& q) {
 
 }  // namespace
 
+namespace {
+
+/// True when a call-level argument (@p field of SampleArgs) reaches a uniform sampler below
+/// @p sampler: some path to it has no sample_args that set the field.
+template <typename Field>
+bool reachesUniform(const PlacementSampler& sampler, Field SampleArgs::*field) {
+  const auto* composite = dynamic_cast<const SequentialCompositeSampler*>(&sampler);
+  if (composite == nullptr) {
+    return true;
+  }
+  for (const SequentialCompositeSampler::Child& child : composite->children()) {
+    if (!(child.args.*field) && reachesUniform(*child.sampler, field)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   const SceneConfig& config = *config_;
   PreparedRequest prepared;
@@ -211,6 +231,17 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   // A sampler run alone keeps the sample_args its parent gives it; the call fills in the rest.
   prepared.reference = args.reference ? *args.reference : reference;
   prepared.onTop = args.onTop ? *args.onTop : request.onTop.value_or(true);
+  if (reference.kind != Reference::Kind::Default &&
+      (args.reference || !reachesUniform(*prepared.sampler, &SampleArgs::reference))) {
+    prepared.notes.push_back(
+        "the call's reference was not used: every sampler it would reach sets its own in "
+        "sample_args");
+  }
+  if (request.onTop && (args.onTop || !reachesUniform(*prepared.sampler, &SampleArgs::onTop))) {
+    prepared.notes.push_back(
+        "the call's on_top was not used: every sampler it would reach sets its own in "
+        "sample_args");
+  }
   return prepared;
 }
 

@@ -42,6 +42,10 @@ struct SceneConfig {
   unsigned threads = 2;                       ///< service calls served at once
   std::uint32_t maxScenesPerRequest = 10000;  ///< larger num_scenes are refused
   double maxRequestSeconds = 10.0;            ///< a request stops after this long [s]
+  /// Frames on the latched /tf_static (they stay with every listener) instead of on /tf,
+  /// re-sent at tfRate (frames of an older scene vanish).
+  bool tfStatic = false;
+  double tfRate = 10.0;  ///< how often the current scene's frames are sent on /tf [Hz]
 
   /// The configured object called @p name, or nullptr.
   const ObjectModel* findObject(const std::string& name) const;

@@ -42,6 +42,9 @@ struct PreparedRequest {
   std::uint32_t maxAttempts = 0;
   double maxSeconds = 0.0;
   std::vector<FixtureSpec> fixtures;  ///< configured fixtures, then the request's
+  /// What the caller should know although the request is valid, e.g. a call-level reference
+  /// that no sampler takes because each sets its own in sample_args.
+  std::vector<std::string> notes;
 };
 
 /// Samples scenes from one configuration. Immutable and safe to share between threads.

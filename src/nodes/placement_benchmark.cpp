@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -22,6 +23,7 @@
 #include "placement_samplers/config_node.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/malloc_tuning.hpp"
+#include "placement_samplers/mesh_loader.hpp"
 #include "placement_samplers/random.hpp"
 #include "placement_samplers/sample_context.hpp"
 #include "placement_samplers/scene_generator.hpp"
@@ -40,9 +42,19 @@ using Clock = std::chrono::steady_clock;
 constexpr std::uint64_t kSeed = 20240605;  // every figure uses this request seed
 constexpr std::size_t kCandidatePool = 1 << 16;
 
+/// The package's config/ as ROS_PACKAGE_PATH finds it (the install space's share directory
+/// once installed, the source tree in a devel space), else the source tree it was built from.
+std::string defaultConfigDir() {
+  const std::string package = ps::findPackageInRosPackagePath("placement_samplers");
+  if (!package.empty() && std::filesystem::is_directory(package + "/config")) {
+    return package + "/config";
+  }
+  return PLACEMENT_SAMPLERS_CONFIG_DIR;
+}
+
 /// Options of one run.
 struct Options {
-  std::string configDir = PLACEMENT_SAMPLERS_CONFIG_DIR;
+  std::string configDir = defaultConfigDir();
   int repetitions = 5;         ///< timed repetitions per figure; the median is printed
   double secondsPerRep = 0.1;  ///< [s] target length of one repetition
   std::uint64_t batchScenes = 10000;

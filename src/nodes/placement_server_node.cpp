@@ -1,10 +1,21 @@
 #include <ros/ros.h>
 
+#include <csignal>
+
 #include "placement_samplers/malloc_tuning.hpp"
 #include "placement_samplers/ros/placement_server.hpp"
 
+namespace {
+
+// SIGTERM (systemd, docker stop, roslaunch's escalation) shuts down as SIGINT does: the node
+// unregisters its services instead of leaving the master pointing at a dead node.
+void requestShutdown(int) { ros::requestShutdown(); }
+
+}  // namespace
+
 int main(int argc, char** argv) {
   ros::init(argc, argv, "placement_server");
+  std::signal(SIGTERM, requestShutdown);
   placement_samplers::keepFreedMemoryForBatches();
   placement_samplers::ros_interface::PlacementServer server(ros::NodeHandle("~"));
   try {
@@ -13,7 +24,6 @@ int main(int argc, char** argv) {
     ROS_FATAL_STREAM("placement_server: invalid configuration: " << e.what());
     return 1;
   }
-  server.watchMaster(ros::WallDuration(1.0));
   ros::AsyncSpinner spinner(server.threads());
   spinner.start();
   ros::waitForShutdown();

@@ -148,6 +148,37 @@ placement_samplers::Scene toSceneMsg(const SceneResult& scene) {
   return msg;
 }
 
+placement_samplers::Fixture toFixtureMsg(const FixtureSpec& fixture) {
+  placement_samplers::Fixture msg;
+  msg.name = fixture.name;
+  msg.object = fixture.objectName;
+  msg.pose = toPoseMsg(fixture.position, fixture.orientation);
+  if (fixture.objectName.empty() && fixture.object && fixture.object->shapes.size() == 1) {
+    // A request's primitive: the inverse of fromSolidPrimitive.
+    const Shape& shape = fixture.object->shapes.front();
+    using shape_msgs::SolidPrimitive;
+    switch (shape.type) {
+      case ShapeType::Box:
+        msg.shape.type = SolidPrimitive::BOX;
+        msg.shape.dimensions = {shape.size.x(), shape.size.y(), shape.size.z()};
+        break;
+      case ShapeType::Sphere:
+        msg.shape.type = SolidPrimitive::SPHERE;
+        msg.shape.dimensions = {shape.radius};
+        break;
+      case ShapeType::Cylinder:
+        msg.shape.type = SolidPrimitive::CYLINDER;
+        msg.shape.dimensions.resize(2);
+        msg.shape.dimensions[SolidPrimitive::CYLINDER_HEIGHT] = shape.length;
+        msg.shape.dimensions[SolidPrimitive::CYLINDER_RADIUS] = shape.radius;
+        break;
+      default:
+        break;  // requests carry boxes, spheres and cylinders only
+    }
+  }
+  return msg;
+}
+
 std::vector<geometry_msgs::TransformStamped> toTransforms(const SceneResult& scene,
                                                           const std::vector<FixtureSpec>& fixtures,
                                                           const std::string& frameId,

@@ -1,5 +1,8 @@
 #include "placement_samplers/ros/placement_server.hpp"
 
+#include <tf2_msgs/TFMessage.h>
+
+#include <chrono>
 #include <sstream>
 
 #include "placement_samplers/config_builder.hpp"
@@ -11,37 +14,6 @@
 
 namespace placement_samplers {
 namespace ros_interface {
-
-PlacementServer::PlacementServer(const ros::NodeHandle& privateHandle)
-    : privateHandle_(privateHandle) {}
-
-PlacementServer::~PlacementServer() {
-  {
-    std::lock_guard<std::mutex> lock(pendingMutex_);
-    stopping_ = true;
-  }
-  pendingReady_.notify_one();
-  if (publisher_.joinable()) {
-    publisher_.join();
-  }
-}
-
-void PlacementServer::publishLoop() {
-  for (;;) {
-    PendingScene next;
-    {
-      std::unique_lock<std::mutex> lock(pendingMutex_);
-      pendingReady_.wait(lock, [this] { return stopping_ || pending_.has_value(); });
-      if (stopping_) {
-        return;
-      }
-      next = std::move(*pending_);
-      pending_.reset();
-    }
-    publish(next);
-  }
-}
-
 namespace {
 
 /// The configuration in the parameters; urdf_param objects read their URDF from the parameter
@@ -60,21 +32,74 @@ std::shared_ptr<const SceneGenerator> loadGenerator(const ros::NodeHandle& priva
       buildSceneConfig(readParameters(privateHandle), options));
 }
 
+tf2_msgs::TFMessage tfMessage(const std::vector<geometry_msgs::TransformStamped>& frames) {
+  tf2_msgs::TFMessage message;
+  message.transforms = frames;
+  return message;
+}
+
+std::string joined(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& p : parts) {
+    out += (out.empty() ? "" : "; ") + p;
+  }
+  return out;
+}
+
 }  // namespace
 
-void PlacementServer::start() {
+PlacementServer::PlacementServer(const ros::NodeHandle& privateHandle)
+    : privateHandle_(privateHandle), lightHandle_(privateHandle) {
+  lightHandle_.setCallbackQueue(&lightQueue_);
+  // "/robot1/placement_server" -> "robot1/placement_server/": tf2 frame names have no leading
+  // slash, and two nodes never share a frame.
+  defaultTfPrefix_ = ros::this_node::getName();
+  while (!defaultTfPrefix_.empty() && defaultTfPrefix_.front() == '/') {
+    defaultTfPrefix_.erase(0, 1);
+  }
+  defaultTfPrefix_ += '/';
+}
+
+PlacementServer::~PlacementServer() {
+  {
+    std::lock_guard<std::mutex> lock(pendingMutex_);
+    stopping_ = true;
+  }
+  pendingReady_.notify_all();
+  for (std::thread* t : {&publisher_, &watcher_}) {
+    if (t->joinable()) {
+      t->join();
+    }
+  }
+  if (lightSpinner_) {
+    lightSpinner_->stop();
+  }
+}
+
+void PlacementServer::start(const ros::WallDuration& masterPeriod) {
   auto generator = loadGenerator(privateHandle_);
-  const std::uint64_t seed = generator->config().seed;
-  seedStream_.seed(seed != 0 ? seed : randomSeed());
+  const SceneConfig& config = generator->config();
+  seedStream_.seed(config.seed != 0 ? config.seed : randomSeed());
+  threads_ = config.threads;
   {
     std::lock_guard<std::mutex> lock(generatorMutex_);
     generator_ = generator;
   }
+  {
+    std::lock_guard<std::mutex> lock(publishMutex_);
+    tfStatic_ = config.tfStatic;
+    tfRate_ = config.tfRate;
+  }
   advertise();
+  lightSpinner_ = std::make_unique<ros::AsyncSpinner>(1, &lightQueue_);
+  lightSpinner_->start();
   publisher_ = std::thread(&PlacementServer::publishLoop, this);
-  ROS_INFO_STREAM("placement_server: " << generator->config().objects.size() << " objects, "
-                                       << generator->config().fixtures.size()
-                                       << " fixtures; serving " << sampleService_.getService());
+  watcher_ = std::thread(&PlacementServer::watchLoop, this, masterPeriod);
+  ROS_INFO_STREAM("placement_server: " << config.objects.size() << " objects, "
+                                       << config.fixtures.size() << " fixtures; serving "
+                                       << sampleService_.getService() << "; frames "
+                                       << config.tfPrefix.value_or(defaultTfPrefix_)
+                                       << "<name> on " << (config.tfStatic ? "/tf_static" : "/tf"));
 }
 
 void PlacementServer::advertise() {
@@ -84,39 +109,54 @@ void PlacementServer::advertise() {
   reloadService_.shutdown();
   pingService_.shutdown();
   markerPublisher_.shutdown();
-  broadcaster_.reset();
-  broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+  scenePublisher_.shutdown();
+  tfPublisher_.shutdown();
+  tfStaticPublisher_.shutdown();
+  ros::NodeHandle global;
+  tfPublisher_ = global.advertise<tf2_msgs::TFMessage>("/tf", 100);
+  tfStaticPublisher_ = global.advertise<tf2_msgs::TFMessage>("/tf_static", 100, true);
   markerPublisher_ = privateHandle_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+  scenePublisher_ = privateHandle_.advertise<PlacedScene>("scene", 1, true);
   sampleService_ =
       privateHandle_.advertiseService("sample_placements", &PlacementServer::sample, this);
-  reloadService_ = privateHandle_.advertiseService("reload", &PlacementServer::reload, this);
-  pingService_ = privateHandle_.advertiseService("ping", &PlacementServer::ping, this);
-  if (!frames_.empty()) {
-    std::vector<geometry_msgs::TransformStamped> frames;
-    for (const auto& entry : frames_) {
-      frames.push_back(entry.second);
+  reloadService_ = lightHandle_.advertiseService("reload", &PlacementServer::reload, this);
+  pingService_ = lightHandle_.advertiseService("ping", &PlacementServer::ping, this);
+  // Latched topics carry the current scene to whoever subscribes after a master restart.
+  if (!shown_.markers.markers.empty()) {
+    markerPublisher_.publish(shown_.markers);
+  }
+  if (shown_.scene) {
+    scenePublisher_.publish(*shown_.scene);
+  }
+  if (tfStatic_ && !shown_.frames.empty()) {
+    tfStaticPublisher_.publish(tfMessage(shown_.frames));
+  }
+}
+
+void PlacementServer::watchLoop(ros::WallDuration period) {
+  // A thread of its own: the check must run while every service thread is busy.
+  bool up = true;
+  const auto step = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(period.toSec()));
+  std::unique_lock<std::mutex> lock(pendingMutex_);
+  while (!stopping_) {
+    // Shares the condition with the publishing thread: the predicate ignores its wake-ups.
+    if (pendingReady_.wait_until(lock, std::chrono::steady_clock::now() + step,
+                                 [this] { return stopping_; })) {
+      return;
     }
-    broadcaster_->sendTransform(frames);
-    markerPublisher_.publish(lastMarkers_);
+    lock.unlock();
+    const bool now = ros::master::check();
+    if (now && !up) {
+      ROS_WARN("placement_server: the master is back; registering services and topics again");
+      advertise();
+    } else if (!now && up) {
+      ROS_WARN("placement_server: lost the master; waiting for it to come back");
+    }
+    up = now;
+    lock.lock();
   }
 }
-
-void PlacementServer::watchMaster(const ros::WallDuration& period) {
-  masterTimer_ = privateHandle_.createWallTimer(period, &PlacementServer::checkMaster, this);
-}
-
-void PlacementServer::checkMaster(const ros::WallTimerEvent&) {
-  const bool up = ros::master::check();
-  if (up && !masterUp_) {
-    ROS_WARN("placement_server: the master is back; registering services and topics again");
-    advertise();
-  } else if (!up && masterUp_) {
-    ROS_WARN("placement_server: lost the master; waiting for it to come back");
-  }
-  masterUp_ = up;
-}
-
-unsigned PlacementServer::threads() const { return generator()->config().threads; }
 
 std::shared_ptr<const SceneGenerator> PlacementServer::generator() const {
   std::lock_guard<std::mutex> lock(generatorMutex_);
@@ -174,12 +214,16 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
         response.message +=
             " (" + std::to_string(failed) + " of " + std::to_string(count) + " scenes failed)";
       }
-    } else if (!request.dry_run) {
-      {
-        std::lock_guard<std::mutex> lock(pendingMutex_);
-        pending_ = PendingScene{generator, std::move(prepared), std::move(scenes.front())};
+    } else {
+      response.message = joined(prepared.notes);
+      if (!request.dry_run) {
+        {
+          std::lock_guard<std::mutex> lock(pendingMutex_);
+          pending_ = ShownScene{generator, std::move(prepared), std::move(scenes.front()), seed,
+                                request.sampler};
+        }
+        pendingReady_.notify_all();
       }
-      pendingReady_.notify_one();
     }
   } catch (const std::exception& e) {
     response.success = false;
@@ -189,34 +233,126 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
   return true;
 }
 
-void PlacementServer::publish(const PendingScene& pending) {
-  const SceneConfig& config = pending.generator->config();
-  const PreparedRequest& request = pending.request;
-  const SceneResult& scene = pending.scene;
+PlacementServer::Shown PlacementServer::render(const ShownScene& shown) const {
+  const SceneConfig& config = shown.generator->config();
+  const std::string prefix = config.tfPrefix.value_or(defaultTfPrefix_);
   const ros::Time now = ros::Time::now();
-  std::vector<geometry_msgs::TransformStamped> frames =
-      toTransforms(scene, request.fixtures, config.frameId, config.tfPrefix, now);
-  visualization_msgs::MarkerArray markers = makeSceneMarkers(request, scene, config.frameId, now);
-  std::lock_guard<std::mutex> lock(publishMutex_);
-  broadcaster_->sendTransform(frames);
-  markerPublisher_.publish(markers);
-  for (const auto& frame : frames) {
-    frames_[frame.child_frame_id] = frame;
+  Shown out;
+  out.frames = toTransforms(shown.scene, shown.request.fixtures, config.frameId, prefix, now);
+  out.markers = makeSceneMarkers(shown.request, shown.scene, config.frameId, now);
+  PlacedScene scene;
+  scene.header.frame_id = config.frameId;
+  scene.header.stamp = now;
+  scene.seed = shown.seed;
+  scene.sampler = shown.sampler;
+  scene.tf_prefix = prefix;
+  scene.placements = toSceneMsg(shown.scene).placements;
+  for (const FixtureSpec& f : shown.request.fixtures) {
+    scene.fixtures.push_back(toFixtureMsg(f));
   }
-  lastMarkers_ = std::move(markers);
+  out.scene = std::move(scene);
+  return out;
+}
+
+void PlacementServer::sendFrames(bool restamp) {
+  // Called with publishMutex_ held.
+  if (shown_.frames.empty()) {
+    return;
+  }
+  if (tfStatic_) {
+    tfStaticPublisher_.publish(tfMessage(shown_.frames));
+    return;
+  }
+  if (restamp) {
+    const ros::Time now = ros::Time::now();
+    for (auto& frame : shown_.frames) {
+      frame.header.stamp = now;
+    }
+  }
+  tfPublisher_.publish(tfMessage(shown_.frames));
+}
+
+void PlacementServer::publishLoop() {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point nextTick = Clock::now();
+  std::unique_lock<std::mutex> lock(pendingMutex_);
+  for (;;) {
+    pendingReady_.wait_until(lock, nextTick,
+                             [this] { return stopping_ || pending_ || clearPending_; });
+    if (stopping_) {
+      return;
+    }
+    std::optional<ShownScene> next = std::move(pending_);
+    pending_.reset();
+    const bool clear = clearPending_;
+    clearPending_ = false;
+    lock.unlock();
+
+    std::optional<Shown> rendered;
+    if (next) {
+      rendered = render(*next);
+    }
+    {
+      std::lock_guard<std::mutex> publishLock(publishMutex_);
+      if (rendered) {
+        // Only the current scene's frames are held: frames of an older one are not re-sent.
+        shown_ = std::move(*rendered);
+        sendFrames(false);
+        markerPublisher_.publish(shown_.markers);
+        scenePublisher_.publish(*shown_.scene);
+      } else if (clear) {
+        shown_.frames.clear();
+        shown_.markers = makeClearMarkers();
+        markerPublisher_.publish(shown_.markers);
+        if (tfStatic_) {
+          tfStaticPublisher_.publish(tf2_msgs::TFMessage());
+        }
+      } else if (!tfStatic_) {
+        sendFrames(true);
+      }
+    }
+    const Clock::time_point now = Clock::now();
+    if (now >= nextTick) {
+      double rate = 10.0;
+      {
+        std::lock_guard<std::mutex> publishLock(publishMutex_);
+        rate = tfRate_;
+      }
+      nextTick = now + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(1.0 / rate));
+    }
+    lock.lock();
+  }
 }
 
 bool PlacementServer::reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   try {
     auto generator = loadGenerator(privateHandle_);
+    const SceneConfig& config = generator->config();
     {
       std::lock_guard<std::mutex> lock(generatorMutex_);
       generator_ = generator;
     }
+    {
+      std::lock_guard<std::mutex> lock(publishMutex_);
+      tfStatic_ = config.tfStatic;
+      tfRate_ = config.tfRate;
+    }
+    {
+      // The shown scene belongs to the old configuration: its frames and markers go.
+      std::lock_guard<std::mutex> lock(pendingMutex_);
+      pending_.reset();
+      clearPending_ = true;
+    }
+    pendingReady_.notify_all();
     response.success = true;
-    response.message =
-        "configuration reloaded: " + std::to_string(generator->config().objects.size()) +
-        " objects, " + std::to_string(generator->config().fixtures.size()) + " fixtures";
+    response.message = "configuration reloaded: " + std::to_string(config.objects.size()) +
+                       " objects, " + std::to_string(config.fixtures.size()) + " fixtures";
+    if (config.threads != threads_) {
+      response.message += "; threads " + std::to_string(config.threads) +
+                          " takes effect when the node restarts (serving with " +
+                          std::to_string(threads_) + ")";
+    }
     ROS_INFO_STREAM("placement_server: " << response.message);
   } catch (const std::exception& e) {
     response.success = false;

@@ -1,6 +1,8 @@
 #include "placement_samplers/ros/scene_markers.hpp"
 
 #include <array>
+#include <cmath>
+#include <cstdint>
 
 #include "placement_samplers/ros/conversions.hpp"
 #include "placement_samplers/sampler_regions.hpp"
@@ -20,18 +22,45 @@ std_msgs::ColorRGBA colour(float r, float g, float b, float a) {
   return c;
 }
 
-std_msgs::ColorRGBA paletteColour(std::size_t i) {
-  static const std::array<std::array<float, 3>, 8> palette{{{0.90f, 0.30f, 0.24f},
-                                                            {0.20f, 0.60f, 0.86f},
-                                                            {0.18f, 0.80f, 0.44f},
-                                                            {0.95f, 0.77f, 0.06f},
-                                                            {0.61f, 0.35f, 0.71f},
-                                                            {0.90f, 0.49f, 0.13f},
-                                                            {0.10f, 0.74f, 0.61f},
-                                                            {0.91f, 0.30f, 0.60f}}};
-  const auto& c = palette[i % palette.size()];
-  return colour(c[0], c[1], c[2], 1.0f);
+/// The ids of the label markers start here, so that an object's shapes and its label never
+/// share an id within a namespace change.
+constexpr int kLabelIdBase = 1 << 20;
+
+}  // namespace
+
+std_msgs::ColorRGBA objectColour(const std::string& name) {
+  // FNV-1a of the name picks a hue: the same colour in every call and every run.
+  std::uint32_t hash = 2166136261u;
+  for (const char c : name) {
+    hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+  }
+  const float hue = static_cast<float>(hash % 360u) / 60.0f;  // sector in [0, 6)
+  const float saturation = 0.7f;
+  const float value = 0.9f;
+  const float chroma = value * saturation;
+  const float x = chroma * (1.0f - std::fabs(std::fmod(hue, 2.0f) - 1.0f));
+  const float m = value - chroma;
+  static const std::array<std::array<int, 3>, 6> order{
+      {{0, 1, 2}, {1, 0, 2}, {2, 0, 1}, {2, 1, 0}, {1, 2, 0}, {0, 2, 1}}};
+  // Each sector of the hue circle: which channel gets chroma, x and 0.
+  const auto& o = order[static_cast<std::size_t>(hue) % 6];
+  const std::array<float, 3> parts{chroma, x, 0.0f};
+  std::array<float, 3> rgb{};
+  for (int k = 0; k < 3; ++k) {
+    rgb[static_cast<std::size_t>(k)] = parts[static_cast<std::size_t>(o[k])] + m;
+  }
+  return colour(rgb[0], rgb[1], rgb[2], 1.0f);
 }
+
+visualization_msgs::MarkerArray makeClearMarkers() {
+  visualization_msgs::MarkerArray array;
+  Marker clear;
+  clear.action = Marker::DELETEALL;
+  array.markers.push_back(clear);
+  return array;
+}
+
+namespace {
 
 class MarkerBuilder {
  public:
@@ -86,6 +115,15 @@ class MarkerBuilder {
         colour(0.2f, 0.9f, 0.2f, 0.25f));
   }
 
+  /// The name above the object's top, in namespace "labels" (rviz can switch it off).
+  void label(const std::string& name, const Eigen::Vector3d& position, double top) {
+    Marker& m = add("labels", Marker::TEXT_VIEW_FACING,
+                    Eigen::Isometry3d(Eigen::Translation3d(position + Eigen::Vector3d(0, 0, top))),
+                    Eigen::Vector3d(0.0, 0.0, kLabelHeight), colour(1.0f, 1.0f, 1.0f, 0.9f));
+    m.id = kLabelIdBase + labels_++;
+    m.text = name;
+  }
+
   visualization_msgs::MarkerArray take() { return std::move(array_); }
 
  private:
@@ -120,8 +158,10 @@ class MarkerBuilder {
     }
   }
 
+  static constexpr double kLabelHeight = 0.03;  ///< text height [m]: readable at 2 m
   Marker prototype_;
   visualization_msgs::MarkerArray array_;
+  int labels_ = 0;
 };
 
 }  // namespace
@@ -131,14 +171,17 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
                                                  const std::string& frameId,
                                                  const ros::Time& stamp) {
   MarkerBuilder builder(frameId, stamp);
+  // Labels float a little above the top of the geometry (its top offset after the pose).
+  const double gap = 0.02;
   for (const FixtureSpec& f : request.fixtures) {
     builder.object("fixtures", *f.object, f.position, f.orientation,
                    colour(0.55f, 0.55f, 0.55f, 0.6f));
+    builder.label(f.name, f.position, f.object->topOffset.z() + gap);
   }
-  for (std::size_t i = 0; i < scene.placements.size(); ++i) {
-    const ObjectPlacement& p = scene.placements[i];
+  for (const ObjectPlacement& p : scene.placements) {
     if (!p.hidden) {
-      builder.object("objects", *p.object, p.position, p.orientation, paletteColour(i));
+      builder.object("objects", *p.object, p.position, p.orientation, objectColour(p.name));
+      builder.label(p.name, p.position, p.object->topOffset.z() + gap);
     }
   }
   for (const SamplerRegion& region : samplerRegions(request, scene)) {

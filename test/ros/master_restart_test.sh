@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Master restart: the node notices, registers its services and topics again, re-broadcasts its
-# last scene, and keeps answering. Runs its own master on a free port; cleans up after itself.
+# Master restart: the node notices, registers its services and topics again, re-sends its last
+# scene, and keeps answering, also when the master goes away while every sampling thread is
+# busy. SIGTERM during a batch shuts it down cleanly (exit 0, services unregistered). Runs its
+# own master on a free port; cleans up after itself.
 set -euo pipefail
 node_bin=$1
 config=$2
@@ -18,7 +20,8 @@ fail() { echo "FAIL: $*"; echo "--- node log"; cat "$log/node.log" || true; exit
 
 start_master() {
   roscore -p "$port" >"$log/core.log" 2>&1 &
-  pids+=($!)
+  core_pid=$!
+  pids+=($core_pid)
   for _ in $(seq 50); do rosparam list >/dev/null 2>&1 && return 0; sleep 0.2; done
   fail "the master did not start"
 }
@@ -37,13 +40,25 @@ call_ok() {
   echo "$out"
   return 1
 }
+stop_master() {
+  kill "$core_pid" 2>/dev/null || true
+  pkill -f "rosmaster --core -p $port" || true
+}
 wait_service() {
   for _ in $(seq 100); do rosservice list 2>/dev/null | grep -q "^$1\$" && return 0; sleep 0.2; done
   return 1
 }
 
+# Holds one sampling thread for max_request_seconds: nothing fits beside a wall over the table.
+hopeless() {
+  rosservice call /placement_server/sample_placements "{max_attempts: 4000000000, dry_run: true,
+    fixtures: [{name: wall, shape: {type: 1, dimensions: [2, 2, 0.5]},
+    pose: {position: {z: 0.8}, orientation: {w: 1}}}]}" >/dev/null 2>&1 || true
+}
+
 start_master
 rosparam load "$config" /placement_server
+rosparam set /placement_server/max_request_seconds 8
 "$node_bin" >"$log/node.log" 2>&1 &
 node=$!
 pids+=($node)
@@ -51,15 +66,37 @@ wait_service /placement_server/sample_placements || fail "no service at start"
 call_ok "{seed: 5}" || fail "first call"
 
 # Stop the master: the node must survive it.
-kill "${pids[0]}"; pkill -f "rosmaster --core -p $port" || true
+stop_master
 sleep 3
 kill -0 "$node" || fail "the node died with the master"
 start_master
 wait_service /placement_server/sample_placements || fail "service not registered again within 20 s"
 wait_service /placement_server/reload || fail "reload not registered again"
-frames=$(timeout 10 rostopic echo -n 1 /tf_static | grep -c child_frame_id || true)
-[ "$frames" -ge 7 ] || fail "expected the 7 frames of the last scene on /tf_static, got $frames"
+frames=$(timeout 10 rostopic echo -n 1 /tf | grep -c child_frame_id || true)
+[ "$frames" -ge 7 ] || fail "expected the 7 frames of the last scene on /tf, got $frames"
 call_ok "{seed: 6}" || fail "call after restart"
 timeout 10 rostopic echo -n 1 /placement_server/markers >/dev/null || fail "no markers after restart"
 grep -q "the master is back" "$log/node.log" || fail "the node did not report the restart"
-echo "master restart: 1 passed, 0 failed"
+
+# Again with both sampling threads (threads: 2) busy and the master down for under a second:
+# the master watch has a thread of its own.
+hopeless & pids+=($!)
+hopeless & pids+=($!)
+sleep 1
+stop_master
+sleep 0.5
+start_master
+wait_service /placement_server/sample_placements || fail "not registered again while busy"
+echo "registered again while both sampling threads were busy"
+
+# SIGTERM in the middle of a batch: a clean shutdown, exit 0, nothing left at the master.
+hopeless & pids+=($!)
+sleep 1
+kill -TERM "$node"
+status=0
+wait "$node" || status=$?
+[ "$status" -eq 0 ] || fail "SIGTERM: exit status $status, expected 0"
+if rosservice list 2>/dev/null | grep -q /placement_server/; then
+  fail "SIGTERM: services still registered: $(rosservice list | grep /placement_server/ | tr '\n' ' ')"
+fi
+echo "master restart: 3 passed, 0 failed"

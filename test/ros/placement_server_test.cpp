@@ -15,6 +15,7 @@
 
 #include "placement_samplers/SamplePlacements.h"
 #include "placement_samplers/sample_scenes_cli.hpp"
+#include "node_test_helpers.hpp"
 
 namespace {
 
@@ -24,39 +25,13 @@ const char* const kService = "/placement_server/sample_placements";
 const std::string kConfig =
     std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/test/data/server_test.yaml";
 
-SamplePlacements call(SamplePlacements::Request request) {
-  SamplePlacements srv;
-  srv.request = request;
-  EXPECT_TRUE(ros::service::call(kService, srv)) << "the service call itself failed";
-  return srv;
+SamplePlacements call(const SamplePlacements::Request& request) {
+  return placement_samplers::test::callService(kService, request);
 }
 
-SamplePlacements::Request seeded(std::uint64_t seed, std::uint32_t scenes = 1) {
-  SamplePlacements::Request r;
-  r.seed = seed;
-  r.num_scenes = scenes;
-  return r;
-}
-
-std::map<std::string, placement_samplers::Placement> byName(
-    const placement_samplers::Scene& scene) {
-  std::map<std::string, placement_samplers::Placement> out;
-  for (const auto& p : scene.placements) {
-    out[p.name] = p;
-  }
-  return out;
-}
-
-// A box over the whole table top: nothing on the table can avoid it.
-placement_samplers::Fixture tableCoveringWall() {
-  placement_samplers::Fixture wall;
-  wall.name = "wall";
-  wall.shape.type = shape_msgs::SolidPrimitive::BOX;
-  wall.shape.dimensions = {2.0, 2.0, 0.5};
-  wall.pose.position.z = 0.8;
-  wall.pose.orientation.w = 1.0;
-  return wall;
-}
+using placement_samplers::test::byName;
+using placement_samplers::test::seeded;
+using placement_samplers::test::tableCoveringWall;
 
 double horizontalDistance(const geometry_msgs::Pose& a, const geometry_msgs::Pose& b) {
   return std::hypot(a.position.x - b.position.x, a.position.y - b.position.y);
@@ -213,6 +188,10 @@ TEST_F(PlacementServerTest, SubSamplerAndCallLevelReference) {
   r.reference = "crate";
   const SamplePlacements kept = call(r);
   ASSERT_TRUE(kept.response.success) << kept.response.message;
+  // ...and the answer says so.
+  EXPECT_EQ(kept.response.message,
+            "the call's reference was not used: every sampler it would reach sets its own in "
+            "sample_args");
   EXPECT_LT(std::abs(kept.response.scenes[0].placements[0].pose.position.x), 1.0);
   // ...but a point reference with a sampler that sets none is used, on_top false keeps z.
   r = seeded(7);
@@ -469,17 +448,18 @@ TEST_F(PlacementServerTest, MarkersShowObjectsFixturesAndRegions) {
   EXPECT_EQ(count["regions"], 3);
 }
 
+// TableSampler's parameters are in /placement_server/TableSampler (the named form of the
+// samplers list): one parameter is changed with one setParam, as `rosparam set` does.
 TEST_F(PlacementServerTest, ReloadAcceptsGoodAndRefusesBadConfiguration) {
   ros::NodeHandle nh;
   std_srvs::Trigger trigger;
-  // A good change: a narrower table region.
-  XmlRpc::XmlRpcValue samplers;
-  ASSERT_TRUE(nh.getParam("/placement_server/samplers", samplers));
-  XmlRpc::XmlRpcValue original = samplers;
-  samplers[2]["x_range"][0] = 0.1;
-  samplers[2]["x_range"][1] = 0.2;
-  samplers[2]["ensure_object_boundary_in_range"] = false;
-  nh.setParam("/placement_server/samplers", samplers);
+  XmlRpc::XmlRpcValue original;
+  ASSERT_TRUE(nh.getParam("/placement_server/TableSampler", original));
+  XmlRpc::XmlRpcValue range;
+  range[0] = 0.1;
+  range[1] = 0.2;
+  nh.setParam("/placement_server/TableSampler/x_range", range);
+  nh.setParam("/placement_server/TableSampler/ensure_object_boundary_in_range", false);
   ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
   EXPECT_TRUE(trigger.response.success) << trigger.response.message;
   SamplePlacements::Request r = seeded(8, 20);
@@ -494,19 +474,19 @@ TEST_F(PlacementServerTest, ReloadAcceptsGoodAndRefusesBadConfiguration) {
   }
 
   // A bad change is refused with its parameter path, and the previous configuration serves on.
-  samplers[2]["x_range"][0] = 0.3;
-  samplers[2]["x_range"][1] = -0.3;
-  nh.setParam("/placement_server/samplers", samplers);
+  range[0] = 0.3;
+  range[1] = -0.3;
+  nh.setParam("/placement_server/TableSampler/x_range", range);
   ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
   EXPECT_FALSE(trigger.response.success);
   EXPECT_EQ(trigger.response.message,
-            "configuration refused, the previous one stays: /placement_server/samplers[2]/x_range: "
-            "expected [min, max] with min <= max, got [0.3, -0.3]");
+            "configuration refused, the previous one stays: /placement_server/TableSampler/"
+            "x_range: expected [min, max] with min <= max, got [0.3, -0.3]");
   const SamplePlacements still = call(r);
   ASSERT_TRUE(still.response.success);
   EXPECT_EQ(still.response.scenes, narrow.response.scenes);
 
-  nh.setParam("/placement_server/samplers", original);
+  nh.setParam("/placement_server/TableSampler", original);
   ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
   EXPECT_TRUE(trigger.response.success) << trigger.response.message;
 }

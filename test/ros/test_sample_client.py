@@ -40,6 +40,13 @@ class SampleClientTest(unittest.TestCase):
         self.assertEqual(out.returncode, 1)
         self.assertIn("message: unknown sampler 'Nope'", out.stdout)
 
+    def test_example_client_refuses_a_negative_seed_with_usage(self):
+        out = subprocess.run([sys.executable, CLIENT, "--seed", "-1"],
+                             capture_output=True, text=True, timeout=60)
+        self.assertEqual(out.returncode, 2)
+        self.assertIn("--seed must be in [0, 18446744073709551615], got -1", out.stderr)
+        self.assertNotIn("Traceback", out.stderr)
+
 
 if __name__ == "__main__":
     rospy.init_node("test_sample_client", anonymous=True)

@@ -297,7 +297,7 @@ TEST(ConfigBuilder, UnknownKeysNameThePath) {
   EXPECT_EQ(buildError("sed: 3\n"),
             "configuration: unknown key 'sed' (expected one of: frame_id, tf_prefix, seed, "
             "collision_check, collision_margin, max_attempts, objects, fixtures, samplers, hide, "
-            "threads, max_scenes_per_request, max_request_seconds)");
+            "threads, max_scenes_per_request, max_request_seconds, tf_static, tf_rate)");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, x_rnage: [0, 1]}\n"),
             "samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, x_range, "
             "y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "

@@ -35,6 +35,9 @@ SampleRequest toSampleRequest(const SamplePlacements::Request& request);
 /// A scene message from a result.
 placement_samplers::Scene toSceneMsg(const SceneResult& scene);
 
+/// A fixture message: a configured object's name, or (for a request's primitive) its shape.
+placement_samplers::Fixture toFixtureMsg(const FixtureSpec& fixture);
+
 /// The tf frames of a scene: each fixture and each placement as <tfPrefix><name> under frameId.
 std::vector<geometry_msgs::TransformStamped> toTransforms(const SceneResult& scene,
                                                           const std::vector<FixtureSpec>& fixtures,

@@ -1,22 +1,23 @@
 #pragma once
 
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <std_srvs/Trigger.h>
-#include <tf2_ros/static_transform_broadcaster.h>
 
 #include <condition_variable>
-#include <map>
-#include <optional>
-#include <thread>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <random>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "placement_samplers/PlacedScene.h"
 #include "placement_samplers/SamplePlacements.h"
 #include "placement_samplers/scene_generator.hpp"
 
@@ -24,24 +25,27 @@ namespace placement_samplers {
 namespace ros_interface {
 
 /// The placement_server node: reads the configuration from its private namespace, serves
-/// ~sample_placements and ~reload, broadcasts the first scene of each call as static tf frames
-/// and publishes ~markers. It converts and wires; the sampling is the core library's.
+/// ~sample_placements, ~reload and ~ping, and shows the latest scene as tf frames, ~markers and
+/// the latched ~scene. It converts and wires; the sampling is the core library's.
+///
+/// Threads: sampling calls run on the global callback queue (the caller spins it with
+/// threads() threads); ~reload and ~ping have a queue and thread of their own, so they answer
+/// while every sampling thread is busy; one more thread sends frames, markers and the scene and
+/// re-sends the frames on /tf at tf_rate; one more watches the master.
 class PlacementServer {
  public:
   /// @param privateHandle the node's private namespace, where the configuration lives
   explicit PlacementServer(const ros::NodeHandle& privateHandle);
   ~PlacementServer();
 
-  /// Reads and builds the configuration, then advertises the services and topics.
+  /// Reads and builds the configuration, advertises the services and topics, and starts the
+  /// light services' thread, the publishing thread and the master watch (checked every
+  /// @p masterPeriod).
   /// @throw ConfigError naming the full parameter path when the configuration is invalid
-  void start();
+  void start(const ros::WallDuration& masterPeriod = ros::WallDuration(1.0));
 
-  /// Service calls served at once (the configuration's `threads`).
-  unsigned threads() const;
-
-  /// Checks the master every @p period: when it comes back after a restart, registers the
-  /// services and topics again and re-broadcasts the last scene.
-  void watchMaster(const ros::WallDuration& period);
+  /// Sampling calls served at once (the configuration's `threads`, read at start-up).
+  unsigned threads() const { return threads_; }
 
   bool sample(SamplePlacements::Request& request, SamplePlacements::Response& response);
   bool reload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
@@ -49,42 +53,63 @@ class PlacementServer {
   bool ping(std_srvs::Empty::Request&, std_srvs::Empty::Response&) { return true; }
 
  private:
-  std::shared_ptr<const SceneGenerator> generator() const;
-  std::uint64_t nextSeed();
-  /// A scene waiting to be broadcast by the publishing thread.
-  struct PendingScene {
+  /// A successful scene, as the publishing thread shows it.
+  struct ShownScene {
     std::shared_ptr<const SceneGenerator> generator;  // keeps the configuration alive
     PreparedRequest request;
     SceneResult scene;
+    std::uint64_t seed = 0;
+    std::string sampler;
   };
-  void publishLoop();
-  void publish(const PendingScene& pending);
+  /// What the publishing thread sends: the frames of the current scene, which it re-stamps.
+  struct Shown {
+    std::vector<geometry_msgs::TransformStamped> frames;
+    visualization_msgs::MarkerArray markers;
+    std::optional<PlacedScene> scene;
+  };
+
+  std::shared_ptr<const SceneGenerator> generator() const;
+  std::uint64_t nextSeed();
   void advertise();
-  void checkMaster(const ros::WallTimerEvent&);
+  void publishLoop();
+  Shown render(const ShownScene& shown) const;
+  void sendFrames(bool restamp);
+  void watchLoop(ros::WallDuration period);
 
   ros::NodeHandle privateHandle_;
-  ros::ServiceServer sampleService_;
-  ros::ServiceServer reloadService_;
-  ros::ServiceServer pingService_;
-  ros::Publisher markerPublisher_;
-  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> broadcaster_;
+  ros::CallbackQueue lightQueue_;  // ~reload and ~ping
+  ros::NodeHandle lightHandle_;    // the private namespace on lightQueue_
+  std::unique_ptr<ros::AsyncSpinner> lightSpinner_;
+  unsigned threads_ = 1;
+  std::string defaultTfPrefix_;  // "<namespace>/<node name>/": used when tf_prefix is unset
 
   mutable std::mutex generatorMutex_;  // guards generator_: a reload swaps it whole
   std::shared_ptr<const SceneGenerator> generator_;
   std::mutex seedMutex_;  // guards seedStream_
   std::mt19937_64 seedStream_;
-  std::mutex publishMutex_;  // one scene's frames and markers at a time; guards the last ones
-  std::map<std::string, geometry_msgs::TransformStamped> frames_;  // every frame sent, by child
-  visualization_msgs::MarkerArray lastMarkers_;
-  // Broadcasting takes tens of microseconds: a thread of its own does it, off the service
-  // callback. Only the latest scene waits; an older one not yet sent is superseded.
+
+  // Guarded by publishMutex_: the handles and what the current scene shows.
+  std::mutex publishMutex_;
+  ros::ServiceServer sampleService_;
+  ros::ServiceServer reloadService_;
+  ros::ServiceServer pingService_;
+  ros::Publisher markerPublisher_;
+  ros::Publisher scenePublisher_;
+  ros::Publisher tfPublisher_;
+  ros::Publisher tfStaticPublisher_;
+  Shown shown_;
+  bool tfStatic_ = false;
+  double tfRate_ = 10.0;
+
+  // The publishing thread: only the latest scene waits; an older one not yet sent is
+  // superseded. A reload clears what is shown.
   std::mutex pendingMutex_;
   std::condition_variable pendingReady_;
-  std::optional<PendingScene> pending_;
+  std::optional<ShownScene> pending_;
+  bool clearPending_ = false;
   bool stopping_ = false;
   std::thread publisher_;
-  ros::WallTimer masterTimer_;
-  bool masterUp_ = true;
+  std::thread watcher_;
 };
 
 }  // namespace ros_interface

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <ros/time.h>
+#include <std_msgs/ColorRGBA.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <string>
@@ -11,13 +12,20 @@ namespace placement_samplers {
 namespace ros_interface {
 
 /// Markers of one scene in @p frameId: a DELETEALL first, then each placed object's collision
-/// shapes (namespace "objects", one colour per object), each fixture's ("fixtures", grey) and
-/// each uniform sampler's region as a thin translucent box ("regions"). Hidden objects are left
-/// out.
+/// shapes (namespace "objects", in the colour of its name), each fixture's ("fixtures", grey),
+/// the name of each above it ("labels") and each uniform sampler's region as a thin translucent
+/// box ("regions"). Hidden objects are left out.
 visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
                                                  const SceneResult& scene,
                                                  const std::string& frameId,
                                                  const ros::Time& stamp);
+
+/// The colour of the object called @p name: a hue from a hash of the name, so an object keeps
+/// its colour from call to call and run to run.
+std_msgs::ColorRGBA objectColour(const std::string& name);
+
+/// A DELETEALL alone: removes every marker of the previous scene.
+visualization_msgs::MarkerArray makeClearMarkers();
 
 }  // namespace ros_interface
 }  // namespace placement_samplers
