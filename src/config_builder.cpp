@@ -14,11 +14,21 @@ namespace placement_samplers {
 namespace {
 
 /// The keys of the configuration's top level, besides the named samplers' maps.
-constexpr const char* kTopLevelKeys[] = {
-    "frame_id",         "tf_prefix", "seed",    "collision_check", "collision_margin",
-    "max_attempts",     "objects",   "fixtures", "samplers",       "hide",
-    "threads",          "max_scenes_per_request", "max_request_seconds", "tf_static",
-    "tf_rate"};
+constexpr const char* kTopLevelKeys[] = {"frame_id",
+                                         "tf_prefix",
+                                         "seed",
+                                         "collision_check",
+                                         "collision_margin",
+                                         "max_attempts",
+                                         "objects",
+                                         "fixtures",
+                                         "samplers",
+                                         "hide",
+                                         "threads",
+                                         "max_scenes_per_request",
+                                         "max_request_seconds",
+                                         "tf_static",
+                                         "tf_rate"};
 
 /// State of one build: the names that a reference may use at each point of the sampling order.
 class Builder {
@@ -184,8 +194,9 @@ class Builder {
       return s;
     }
     if (!item.isMap()) {
-      item.fail("expected a sampler: a map of its parameters, or its name with the parameters "
-                "in a top-level map of that name");
+      item.fail(
+          "expected a sampler: a map of its parameters, or its name with the parameters "
+          "in a top-level map of that name");
     }
     s.nameNode = &item.at("name");
     s.name = s.nameNode->asString();

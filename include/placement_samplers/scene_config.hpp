@@ -25,11 +25,11 @@ struct FixtureSpec {
 /// A validated, immutable configuration: what the builder produces from one schema, for the CLI
 /// and the node alike.
 struct SceneConfig {
-  std::string frameId = "world";        ///< parent frame of every pose
+  std::string frameId = "world";  ///< parent frame of every pose
   /// Child frame of object NAME is tfPrefix + NAME; unset: the node uses its own name and
   /// namespace ("robot1/placement_server/"), so two nodes never share a frame.
   std::optional<std::string> tfPrefix;
-  std::uint64_t seed = 0;               ///< 0 = a fresh seed from std::random_device
+  std::uint64_t seed = 0;  ///< 0 = a fresh seed from std::random_device
   CollisionMode collisionCheck = CollisionMode::Radius;
   double collisionMargin = 0.0;       ///< clearance in the exact modes [m]
   std::uint32_t maxAttempts = 5000;   ///< default samples per object

@@ -98,8 +98,8 @@ void PlacementServer::start(const ros::WallDuration& masterPeriod) {
   ROS_INFO_STREAM("placement_server: " << config.objects.size() << " objects, "
                                        << config.fixtures.size() << " fixtures; serving "
                                        << sampleService_.getService() << "; frames "
-                                       << config.tfPrefix.value_or(defaultTfPrefix_)
-                                       << "<name> on " << (config.tfStatic ? "/tf_static" : "/tf"));
+                                       << config.tfPrefix.value_or(defaultTfPrefix_) << "<name> on "
+                                       << (config.tfStatic ? "/tf_static" : "/tf"));
 }
 
 void PlacementServer::advertise() {

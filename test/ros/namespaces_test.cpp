@@ -33,8 +33,8 @@ TEST(Namespaces, InstancesHaveTheirOwnFramesAndMarkers) {
           markers[robot] = *m;
         }));
     // Different seeds: the two cubes stand in different places.
-    const SamplePlacements srv = test::callService(node + "/sample_placements",
-                                                   seeded(robot == "robot1" ? 1 : 2));
+    const SamplePlacements srv =
+        test::callService(node + "/sample_placements", seeded(robot == "robot1" ? 1 : 2));
     ASSERT_TRUE(srv.response.success) << srv.response.message;
     cube[robot] = test::byName(srv.response.scenes[0]).at("cube").pose.position;
   }
@@ -80,11 +80,5 @@ TEST(Namespaces, InstancesHaveTheirOwnFramesAndMarkers) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "namespaces_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
+  return placement_samplers::test::runNodeTests(argc, argv, "namespaces_test");
 }

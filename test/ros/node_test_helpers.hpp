@@ -1,6 +1,7 @@
 #pragma once
 // Helpers of the node tests: calls, requests and waiting for a condition.
 
+#include <gtest/gtest.h>
 #include <ros/ros.h>
 
 #include <functional>
@@ -69,6 +70,18 @@ inline bool waitFor(const std::function<bool()>& condition, double seconds) {
     ros::WallDuration(0.02).sleep();
   }
   return condition();
+}
+
+/// main() of a node test: gtest, a ROS node called @p name and two spinner threads (for
+/// subscriptions and tf listeners), then RUN_ALL_TESTS.
+inline int runNodeTests(int argc, char** argv, const char* name) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, name);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
 }
 
 }  // namespace test

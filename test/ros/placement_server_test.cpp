@@ -563,11 +563,5 @@ TEST_F(PlacementServerTest, ConcurrentCallsAreIndependent) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "placement_server_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
+  return placement_samplers::test::runNodeTests(argc, argv, "placement_server_test");
 }

@@ -41,8 +41,8 @@ template <typename Message>
 class Latest {
  public:
   explicit Latest(const std::string& topic) {
-    subscriber_ = handle_.subscribe<Message>(
-        topic, 10, [this](const typename Message::ConstPtr& m) {
+    subscriber_ =
+        handle_.subscribe<Message>(topic, 10, [this](const typename Message::ConstPtr& m) {
           std::lock_guard<std::mutex> lock(mutex_);
           latest_ = *m;
         });
@@ -77,8 +77,7 @@ class SceneLifecycleTest : public testing::Test {
   /// A frame is live when a listener can look it up half a second ago: the node re-sends the
   /// current scene's frames at tf_rate, and an older scene's frames are not re-sent.
   bool live(const std::string& name) {
-    return buffer_.canTransform("world", "test/" + name,
-                                ros::Time::now() - ros::Duration(0.5));
+    return buffer_.canTransform("world", "test/" + name, ros::Time::now() - ros::Duration(0.5));
   }
 
   tf2_ros::Buffer buffer_;
@@ -192,8 +191,8 @@ TEST_F(SceneLifecycleTest, MarkersHaveLabelsAndColoursThatFollowTheName) {
       }
     }
     // Every object but the hidden pill, and the fixtures.
-    EXPECT_EQ(labels, (std::set<std::string>{"plate", "cup", "cube", "can", "ball", "table",
-                                             "far_bin"}));
+    EXPECT_EQ(labels,
+              (std::set<std::string>{"plate", "cup", "cube", "can", "ball", "table", "far_bin"}));
   }
   ASSERT_EQ(colours.size(), 5u);
   EXPECT_NE(colours.at("cube"), colours.at("can"));
@@ -252,11 +251,5 @@ TEST_F(SceneLifecycleTest, LightServicesAnswerWhileSamplingThreadsAreBusy) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "scene_lifecycle_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
+  return placement_samplers::test::runNodeTests(argc, argv, "scene_lifecycle_test");
 }

@@ -269,14 +269,14 @@ TEST(ConfigBuilder, NamedSamplerErrorsNameThePath) {
             "'TableSampler' at the top level of the configuration");
   EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: [1, 2]\n"),
             "S: expected the parameters of sampler 'S' (a map), got a list");
+  // The keys of a named sampler's map: `name` is the map's own key.
+  const std::string keys =
+      " (expected one of: type, objects, x_range, y_range, rotation, rotation_axis, "
+      "ensure_object_boundary_in_range, ensure_valid_placement, reference_pos, z_offset, "
+      "sample_args, max_attempts)";
   EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {objects: [cube], x_rnage: [0, 1]}\n"),
-            "S: unknown key 'x_rnage' (expected one of: type, objects, x_range, y_range, "
-            "rotation, rotation_axis, ensure_object_boundary_in_range, ensure_valid_placement, "
-            "reference_pos, z_offset, sample_args, max_attempts)");
-  EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {name: S}\n"),
-            "S: unknown key 'name' (expected one of: type, objects, x_range, y_range, "
-            "rotation, rotation_axis, ensure_object_boundary_in_range, ensure_valid_placement, "
-            "reference_pos, z_offset, sample_args, max_attempts)");
+            "S: unknown key 'x_rnage'" + keys);
+  EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {name: S}\n"), "S: unknown key 'name'" + keys);
   EXPECT_EQ(buildError(kObjects + "samplers: [{name: S, type: uniform}]\nS: {type: uniform}\n"),
             "S.type: the type of sampler 'S' is also given in its list item; give it once");
   EXPECT_EQ(buildError(kObjects + "samplers: [hide]\n"),
@@ -288,9 +288,9 @@ TEST(ConfigBuilder, NamedSamplerErrorsNameThePath) {
             "samplers[0]: expected a sampler: a map of its parameters, or its name with the "
             "parameters in a top-level map of that name");
   // A top-level map no list names is still a typo.
-  EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {objects: []}\nT: {objects: []}\n")
-                .substr(0, 32),
-            "configuration: unknown key 'T' (");
+  EXPECT_EQ(
+      buildError(kObjects + "samplers: [S]\nS: {objects: []}\nT: {objects: []}\n").substr(0, 32),
+      "configuration: unknown key 'T' (");
 }
 
 TEST(ConfigBuilder, UnknownKeysNameThePath) {
