@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 
@@ -69,7 +70,9 @@ ConfigNode& ConfigNode::append() {
 }
 
 ConfigNode& ConfigNode::add(const std::string& key) {
-  const std::string path = path_.empty() ? key : path_ + separator_ + key;
+  // Paths appear in messages only: a key with control characters shows escaped.
+  const std::string shown = escapeText(key);
+  const std::string path = path_.empty() ? shown : path_ + separator_ + shown;
   map_.emplace_back(key, ConfigNode(path, separator_));
   return map_.back().second;
 }
@@ -92,7 +95,7 @@ std::string ConfigNode::describeValue() const {
       out << " (" << double_ << ")";
       break;
     case Type::String:
-      out << " ('" << string_ << "')";
+      out << " (" << quoteText(string_) << ")";
       break;
     case Type::List:
       out << " of " << list_.size() << " element" << (list_.size() == 1 ? "" : "s");
@@ -122,7 +125,7 @@ const ConfigNode* ConfigNode::get(const std::string& key) const {
 const ConfigNode& ConfigNode::at(const std::string& key) const {
   const ConfigNode* child = get(key);
   if (child == nullptr) {
-    fail("missing required key '" + key + "'");
+    fail("missing required key " + quoteText(key));
   }
   return *child;
 }
@@ -224,7 +227,7 @@ void ConfigNode::checkKeys(std::initializer_list<const char*> allowed) const {
       for (const char* key : allowed) {
         list += (list.empty() ? "" : ", ") + std::string(key);
       }
-      fail("unknown key '" + entry.first + "' (expected one of: " + list + ")");
+      fail("unknown key " + quoteText(entry.first) + " (expected one of: " + list + ")");
     }
   }
 }
