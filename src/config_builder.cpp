@@ -3,13 +3,56 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <unordered_set>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/object_config.hpp"
+#include "placement_samplers/text.hpp"
 #include "placement_samplers/uniform_random_sampler.hpp"
 
 namespace placement_samplers {
 namespace {
+
+/// A point [x, y, z] [m] within +-limits::kCoordinate.
+Eigen::Vector3d boundedPoint(const ConfigNode& node) {
+  const Eigen::Vector3d v = node.asVector3();
+  if ((v.array().abs() > limits::kCoordinate).any()) {
+    std::ostringstream out;
+    out << "expected coordinates within [-" << limits::kCoordinate << ", " << limits::kCoordinate
+        << "] m, got [" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+    node.fail(out.str());
+  }
+  return v;
+}
+
+/// Refuses a tree (from rosparam or YAML) of more than limits::kConfigValues values or nested
+/// more than limits::kConfigDepth levels, walking it without recursion.
+void checkTreeSize(const ConfigNode& root) {
+  std::vector<std::pair<const ConfigNode*, int>> stack{{&root, 1}};
+  std::size_t values = 0;
+  while (!stack.empty()) {
+    const ConfigNode& node = *stack.back().first;
+    const int depth = stack.back().second;
+    stack.pop_back();
+    if (++values > limits::kConfigValues) {
+      root.fail("more than " + std::to_string(limits::kConfigValues) +
+                " values (maps, lists and scalars)");
+    }
+    if (depth > limits::kConfigDepth) {
+      node.fail("nested too deep (more than " + std::to_string(limits::kConfigDepth) + " levels)");
+    }
+    if (node.isMap()) {
+      for (const auto& entry : node.entries()) {
+        stack.emplace_back(&entry.second, depth + 1);
+      }
+    } else if (node.isList()) {
+      for (const ConfigNode& element : node.elements()) {
+        stack.emplace_back(&element, depth + 1);
+      }
+    }
+  }
+}
 
 /// State of one build: the names that a reference may use at each point of the sampling order.
 class Builder {
@@ -27,6 +70,7 @@ class Builder {
       config_.objects.push_back(
           std::make_shared<ObjectModel>(parseObject(entry.first, entry.second, options_, meshes_)));
     }
+    config_.indexObjects();
   }
 
   void fixtures(const ConfigNode& node) {
@@ -35,17 +79,20 @@ class Builder {
       FixtureSpec fixture;
       fixture.name = f.at("name").asString();
       if (!isValidName(fixture.name)) {
-        f.at("name").fail("fixture names must match [A-Za-z0-9_-]+, got '" + fixture.name + "'");
+        f.at("name").fail("fixture names must match [A-Za-z0-9_-]+, got " +
+                          quoteText(fixture.name));
       }
       if (config_.findObject(fixture.name) != nullptr || available_.count(fixture.name) != 0) {
-        f.at("name").fail("'" + fixture.name + "' is already the name of an object or fixture");
+        f.at("name").fail(quoteText(fixture.name) + " is already the name of an object or fixture");
       }
       fixture.objectName = f.at("object").asString();
       const ObjectModel* object = config_.findObject(fixture.objectName);
       if (object == nullptr) {
-        f.at("object").fail("unknown object '" + fixture.objectName + "' (not under objects)");
+        f.at("object").fail("unknown object " + quoteText(fixture.objectName) +
+                            " (not under objects)");
       }
-      fixture.position = f.at("position").asVector3();
+      fixtureObjects_.insert(fixture.objectName);
+      fixture.position = boundedPoint(f.at("position"));
       if (const ConfigNode* q = f.get("orientation")) {
         fixture.orientation = parseQuaternion(*q);
       }
@@ -72,7 +119,7 @@ class Builder {
         samplers(s.at("samplers"), *composite, effective);
         wrap(s, [&] { parent.appendSampler(composite, args); });
       } else {
-        s.at("type").fail("expected uniform or sequential, got '" + type + "'");
+        s.at("type").fail("expected uniform or sequential, got " + quoteText(type));
       }
     }
   }
@@ -103,11 +150,12 @@ class Builder {
       n.fail("expected a non-empty sampler name");
     }
     if (name == kRootSamplerName || name == SequentialCompositeSampler::kHideSamplerName) {
-      n.fail("sampler name '" + name + "' is reserved (" + kRootSamplerName + " is the root, " +
-             SequentialCompositeSampler::kHideSamplerName + " places the hidden objects)");
+      n.fail("sampler name " + quoteText(name) + " is reserved (" + kRootSamplerName +
+             " is the root, " + SequentialCompositeSampler::kHideSamplerName +
+             " places the hidden objects)");
     }
     if (!samplerNames_.insert(name).second) {
-      n.fail("sampler name '" + name + "' is already used by another sampler");
+      n.fail("sampler name " + quoteText(name) + " is already used by another sampler");
     }
     return name;
   }
@@ -116,10 +164,10 @@ class Builder {
     const std::string& name = n.asString();
     ObjectPtr object = config_.findObjectPtr(name);
     if (!object) {
-      n.fail("unknown object '" + name + "' (not under objects)");
+      n.fail("unknown object " + quoteText(name) + " (not under objects)");
     }
     if (!assigned_.insert(name).second) {
-      n.fail("object '" + name + "' is already placed by another sampler or hidden");
+      n.fail("object " + quoteText(name) + " is already placed by another sampler or hidden");
     }
     return object;
   }
@@ -136,7 +184,7 @@ class Builder {
         args.reference = Reference::named(r->asString());
         referenceNodes_.push_back(r);
       } else if (r->isList()) {
-        args.reference = Reference::at(r->asVector3());
+        args.reference = Reference::at(boundedPoint(*r));
       } else {
         r->fail("expected an object or fixture name, or a point [x, y, z]");
       }
@@ -176,7 +224,7 @@ class Builder {
     if (const ConfigNode* n = s.get("rotation_axis")) {
       const std::string& axis = n->asString();
       if (axis != "x" && axis != "y" && axis != "z") {
-        n->fail("expected x, y or z, got '" + axis + "'");
+        n->fail("expected x, y or z, got " + quoteText(axis));
       }
       p.rotationAxis = axis[0] - 'x';
     }
@@ -205,8 +253,8 @@ class Builder {
           where = r;
         }
       }
-      where->fail("reference '" + reference->name + "' of sampler '" + name +
-                  "' is neither a fixture nor an object placed by an earlier sampler");
+      where->fail("reference " + quoteText(reference->name) + " of sampler " + quoteText(name) +
+                  " is neither a fixture nor an object placed by an earlier sampler");
     }
     std::vector<ObjectPtr> objects;
     if (const ConfigNode* list = s.get("objects")) {
@@ -221,7 +269,8 @@ class Builder {
       // Point at the parameter the sampler complains about when it names one.
       const std::string message = e.what();
       const ConfigNode* where = &s;
-      for (const char* key : {"x_range", "y_range", "rotation", "max_attempts"}) {
+      for (const char* key :
+           {"x_range", "y_range", "rotation", "reference_pos", "z_offset", "max_attempts"}) {
         if (message.find(std::string("': ") + key + " ") != std::string::npos && s.get(key)) {
           where = s.get(key);
         }
@@ -246,11 +295,27 @@ class Builder {
 
   SceneConfig& config_;
   const BuildOptions& options_;
-  MeshLoader meshes_;                // each mesh file read once per build
-  std::set<std::string> available_;  // fixtures and objects placed so far, in sampling order
-  std::set<std::string> assigned_;   // objects that have a sampler
+  MeshLoader meshes_;                     // each mesh file read once per build
+  std::set<std::string> available_;       // fixtures and objects placed so far, in sampling order
+  std::set<std::string> assigned_;        // objects that have a sampler
+  std::set<std::string> fixtureObjects_;  // objects whose geometry a configured fixture uses
   std::set<std::string> samplerNames_;
   std::vector<const ConfigNode*> referenceNodes_;
+
+ public:
+  /// Objects that no sampler places, that are not hidden and that no configured fixture uses:
+  /// a warning each.
+  void warnUnplaced() {
+    for (const ObjectPtr& object : config_.objects) {
+      // The geometry of a configured fixture is there on purpose.
+      if (assigned_.count(object->name) != 0 || fixtureObjects_.count(object->name) != 0) {
+        continue;
+      }
+      config_.warnings.push_back("object " + quoteText(object->name) +
+                                 " is placed by no sampler, not hidden and no fixture's geometry:"
+                                 " it appears in no scene unless a request uses it for a fixture");
+    }
+  }
 };
 
 }  // namespace
@@ -266,7 +331,7 @@ CollisionMode parseCollisionMode(const ConfigNode& node) {
   if (mode == "radius_and_fcl") {
     return CollisionMode::RadiusAndFcl;
   }
-  node.fail("expected radius, fcl or radius_and_fcl, got '" + mode + "'");
+  node.fail("expected radius, fcl or radius_and_fcl, got " + quoteText(mode));
 }
 
 std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
@@ -274,9 +339,11 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
 }
 
 std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const BuildOptions& options) {
+  checkTreeSize(root);
   root.checkKeys({"frame_id", "tf_prefix", "seed", "collision_check", "collision_margin",
                   "max_attempts", "objects", "fixtures", "samplers", "hide", "threads",
-                  "max_scenes_per_request", "max_request_seconds"});
+                  "max_scenes_per_request", "max_request_seconds", "max_fixtures_per_request",
+                  "max_placements_per_request"});
   auto config = std::make_shared<SceneConfig>();
   if (const ConfigNode* n = root.get("frame_id")) {
     config->frameId = n->asString();
@@ -298,6 +365,12 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
     if (config->collisionMargin < 0.0) {
       n->fail("expected a non-negative clearance in [m]");
     }
+    if (config->collisionMargin > limits::kCoordinate) {
+      std::ostringstream out;
+      out << "expected a non-negative clearance in [m] of at most " << limits::kCoordinate
+          << ", got " << config->collisionMargin;
+      n->fail(out.str());
+    }
   }
   if (const ConfigNode* n = root.get("max_attempts")) {
     config->maxAttempts =
@@ -311,9 +384,22 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
   }
   if (const ConfigNode* n = root.get("max_request_seconds")) {
     config->maxRequestSeconds = n->asDouble();
+    // Bounded, so that now + the limit is a time point the clock can hold.
     if (config->maxRequestSeconds <= 0.0) {
       n->fail("expected a positive duration in [s]");
     }
+    if (config->maxRequestSeconds > limits::kRequestSeconds) {
+      std::ostringstream out;
+      out << "expected a positive duration in [s] of at most " << limits::kRequestSeconds
+          << ", got " << config->maxRequestSeconds;
+      n->fail(out.str());
+    }
+  }
+  if (const ConfigNode* n = root.get("max_fixtures_per_request")) {
+    config->maxFixturesPerRequest = static_cast<std::uint32_t>(n->asInt(0, 1000000));
+  }
+  if (const ConfigNode* n = root.get("max_placements_per_request")) {
+    config->maxPlacementsPerRequest = static_cast<std::uint64_t>(n->asInt(1, 1000000000));
   }
   Builder builder(*config, options);
   if (const ConfigNode* n = root.get("objects")) {
@@ -329,6 +415,7 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
   if (const ConfigNode* n = root.get("hide")) {
     builder.hide(*n);
   }
+  builder.warnUnplaced();
   // Fails now rather than on the first request when the mode is not built in.
   makeCollisionChecker(config->collisionCheck, config->collisionMargin);
   return config;
