@@ -5,9 +5,12 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <unordered_set>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/object_config.hpp"
+#include "placement_samplers/text.hpp"
 #include "placement_samplers/uniform_random_sampler.hpp"
 
 namespace placement_samplers {
@@ -27,8 +30,50 @@ constexpr const char* kTopLevelKeys[] = {"frame_id",
                                          "threads",
                                          "max_scenes_per_request",
                                          "max_request_seconds",
+                                         "max_fixtures_per_request",
+                                         "max_placements_per_request",
                                          "tf_static",
                                          "tf_rate"};
+
+/// A point [x, y, z] [m] within +-limits::kCoordinate.
+Eigen::Vector3d boundedPoint(const ConfigNode& node) {
+  const Eigen::Vector3d v = node.asVector3();
+  if ((v.array().abs() > limits::kCoordinate).any()) {
+    std::ostringstream out;
+    out << "expected coordinates within [-" << limits::kCoordinate << ", " << limits::kCoordinate
+        << "] m, got [" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+    node.fail(out.str());
+  }
+  return v;
+}
+
+/// Refuses a tree (from rosparam or YAML) of more than limits::kConfigValues values or nested
+/// more than limits::kConfigDepth levels, walking it without recursion.
+void checkTreeSize(const ConfigNode& root) {
+  std::vector<std::pair<const ConfigNode*, int>> stack{{&root, 1}};
+  std::size_t values = 0;
+  while (!stack.empty()) {
+    const ConfigNode& node = *stack.back().first;
+    const int depth = stack.back().second;
+    stack.pop_back();
+    if (++values > limits::kConfigValues) {
+      root.fail("more than " + std::to_string(limits::kConfigValues) +
+                " values (maps, lists and scalars)");
+    }
+    if (depth > limits::kConfigDepth) {
+      node.fail("nested too deep (more than " + std::to_string(limits::kConfigDepth) + " levels)");
+    }
+    if (node.isMap()) {
+      for (const auto& entry : node.entries()) {
+        stack.emplace_back(&entry.second, depth + 1);
+      }
+    } else if (node.isList()) {
+      for (const ConfigNode& element : node.elements()) {
+        stack.emplace_back(&element, depth + 1);
+      }
+    }
+  }
+}
 
 /// State of one build: the names that a reference may use at each point of the sampling order.
 class Builder {
@@ -47,6 +92,7 @@ class Builder {
       config_.objects.push_back(
           std::make_shared<ObjectModel>(parseObject(entry.first, entry.second, options_, meshes_)));
     }
+    config_.indexObjects();
   }
 
   void fixtures(const ConfigNode& node) {
@@ -55,17 +101,20 @@ class Builder {
       FixtureSpec fixture;
       fixture.name = f.at("name").asString();
       if (!isValidName(fixture.name)) {
-        f.at("name").fail("fixture names must match [A-Za-z0-9_-]+, got '" + fixture.name + "'");
+        f.at("name").fail("fixture names must match [A-Za-z0-9_-]+, got " +
+                          quoteText(fixture.name));
       }
       if (config_.findObject(fixture.name) != nullptr || available_.count(fixture.name) != 0) {
-        f.at("name").fail("'" + fixture.name + "' is already the name of an object or fixture");
+        f.at("name").fail(quoteText(fixture.name) + " is already the name of an object or fixture");
       }
       fixture.objectName = f.at("object").asString();
       const ObjectModel* object = config_.findObject(fixture.objectName);
       if (object == nullptr) {
-        f.at("object").fail("unknown object '" + fixture.objectName + "' (not under objects)");
+        f.at("object").fail("unknown object " + quoteText(fixture.objectName) +
+                            " (not under objects)");
       }
-      fixture.position = f.at("position").asVector3();
+      fixtureObjects_.insert(fixture.objectName);
+      fixture.position = boundedPoint(f.at("position"));
       if (const ConfigNode* q = f.get("orientation")) {
         fixture.orientation = parseQuaternion(*q);
       }
@@ -94,7 +143,7 @@ class Builder {
         samplers(s.params->at("samplers"), *composite, effective);
         wrap(*s.params, [&] { parent.appendSampler(composite, args); });
       } else {
-        typeNode->fail("expected uniform or sequential, got '" + type + "'");
+        typeNode->fail("expected uniform or sequential, got " + quoteText(type));
       }
     }
   }
@@ -103,8 +152,16 @@ class Builder {
   /// item is only the name, as costmap_2d's plugin lists): `rosparam set` can then change one
   /// parameter. Lenient: the build reports what is malformed.
   static void namedSamplers(const ConfigNode& root, const ConfigNode& list,
-                            std::vector<std::string>& names, int depth = 0) {
-    if (!list.isList() || depth > 64) {
+                            std::vector<std::string>& names) {
+    std::unordered_set<std::string> seen(names.begin(), names.end());
+    namedSamplers(root, list, names, seen, 0);
+  }
+
+ private:
+  static void namedSamplers(const ConfigNode& root, const ConfigNode& list,
+                            std::vector<std::string>& names, std::unordered_set<std::string>& seen,
+                            int depth) {
+    if (!list.isList() || depth > limits::kConfigDepth) {
       return;
     }
     for (const ConfigNode& item : list.elements()) {
@@ -115,17 +172,18 @@ class Builder {
         name = &item.at("name").asString();
       }
       const ConfigNode* params = name ? root.get(*name) : (item.isMap() ? &item : nullptr);
-      if (name && std::find(names.begin(), names.end(), *name) == names.end()) {
+      if (name && seen.insert(*name).second) {
         names.push_back(*name);
       }
       if (params && params->isMap()) {
         if (const ConfigNode* inner = params->get("samplers")) {
-          namedSamplers(root, *inner, names, depth + 1);
+          namedSamplers(root, *inner, names, seen, depth + 1);
         }
       }
     }
   }
 
+ public:
   void hide(const ConfigNode& node) {
     std::vector<ObjectPtr> objects;
     for (const ConfigNode& n : node.elements()) {
@@ -227,11 +285,12 @@ class Builder {
       n.fail("expected a non-empty sampler name");
     }
     if (name == kRootSamplerName || name == SequentialCompositeSampler::kHideSamplerName) {
-      n.fail("sampler name '" + name + "' is reserved (" + kRootSamplerName + " is the root, " +
-             SequentialCompositeSampler::kHideSamplerName + " places the hidden objects)");
+      n.fail("sampler name " + quoteText(name) + " is reserved (" + kRootSamplerName +
+             " is the root, " + SequentialCompositeSampler::kHideSamplerName +
+             " places the hidden objects)");
     }
     if (!samplerNames_.insert(name).second) {
-      n.fail("sampler name '" + name + "' is already used by another sampler");
+      n.fail("sampler name " + quoteText(name) + " is already used by another sampler");
     }
     return name;
   }
@@ -240,10 +299,10 @@ class Builder {
     const std::string& name = n.asString();
     ObjectPtr object = config_.findObjectPtr(name);
     if (!object) {
-      n.fail("unknown object '" + name + "' (not under objects)");
+      n.fail("unknown object " + quoteText(name) + " (not under objects)");
     }
     if (!assigned_.insert(name).second) {
-      n.fail("object '" + name + "' is already placed by another sampler or hidden");
+      n.fail("object " + quoteText(name) + " is already placed by another sampler or hidden");
     }
     return object;
   }
@@ -260,7 +319,7 @@ class Builder {
         args.reference = Reference::named(r->asString());
         referenceNodes_.push_back(r);
       } else if (r->isList()) {
-        args.reference = Reference::at(r->asVector3());
+        args.reference = Reference::at(boundedPoint(*r));
       } else {
         r->fail("expected an object or fixture name, or a point [x, y, z]");
       }
@@ -301,7 +360,7 @@ class Builder {
     if (const ConfigNode* n = s.get("rotation_axis")) {
       const std::string& axis = n->asString();
       if (axis != "x" && axis != "y" && axis != "z") {
-        n->fail("expected x, y or z, got '" + axis + "'");
+        n->fail("expected x, y or z, got " + quoteText(axis));
       }
       p.rotationAxis = axis[0] - 'x';
     }
@@ -330,8 +389,8 @@ class Builder {
           where = r;
         }
       }
-      where->fail("reference '" + reference->name + "' of sampler '" + name +
-                  "' is neither a fixture nor an object placed by an earlier sampler");
+      where->fail("reference " + quoteText(reference->name) + " of sampler " + quoteText(name) +
+                  " is neither a fixture nor an object placed by an earlier sampler");
     }
     std::vector<ObjectPtr> objects;
     if (const ConfigNode* list = s.get("objects")) {
@@ -346,7 +405,8 @@ class Builder {
       // Point at the parameter the sampler complains about when it names one.
       const std::string message = e.what();
       const ConfigNode* where = &s;
-      for (const char* key : {"x_range", "y_range", "rotation", "max_attempts"}) {
+      for (const char* key :
+           {"x_range", "y_range", "rotation", "reference_pos", "z_offset", "max_attempts"}) {
         if (message.find(std::string("': ") + key + " ") != std::string::npos && s.get(key)) {
           where = s.get(key);
         }
@@ -372,11 +432,27 @@ class Builder {
   const ConfigNode& root_;
   SceneConfig& config_;
   const BuildOptions& options_;
-  MeshLoader meshes_;                // each mesh file read once per build
-  std::set<std::string> available_;  // fixtures and objects placed so far, in sampling order
-  std::set<std::string> assigned_;   // objects that have a sampler
+  MeshLoader meshes_;                     // each mesh file read once per build
+  std::set<std::string> available_;       // fixtures and objects placed so far, in sampling order
+  std::set<std::string> assigned_;        // objects that have a sampler
+  std::set<std::string> fixtureObjects_;  // objects whose geometry a configured fixture uses
   std::set<std::string> samplerNames_;
   std::vector<const ConfigNode*> referenceNodes_;
+
+ public:
+  /// Objects that no sampler places, that are not hidden and that no configured fixture uses:
+  /// a warning each.
+  void warnUnplaced() {
+    for (const ObjectPtr& object : config_.objects) {
+      // The geometry of a configured fixture is there on purpose.
+      if (assigned_.count(object->name) != 0 || fixtureObjects_.count(object->name) != 0) {
+        continue;
+      }
+      config_.warnings.push_back("object " + quoteText(object->name) +
+                                 " is placed by no sampler, not hidden and no fixture's geometry:"
+                                 " it appears in no scene unless a request uses it for a fixture");
+    }
+  }
 };
 
 }  // namespace
@@ -392,7 +468,7 @@ CollisionMode parseCollisionMode(const ConfigNode& node) {
   if (mode == "radius_and_fcl") {
     return CollisionMode::RadiusAndFcl;
   }
-  node.fail("expected radius, fcl or radius_and_fcl, got '" + mode + "'");
+  node.fail("expected radius, fcl or radius_and_fcl, got " + quoteText(mode));
 }
 
 std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
@@ -400,6 +476,7 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root) {
 }
 
 std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const BuildOptions& options) {
+  checkTreeSize(root);
   std::vector<std::string> allowed(std::begin(kTopLevelKeys), std::end(kTopLevelKeys));
   if (const ConfigNode* n = root.get("samplers")) {
     Builder::namedSamplers(root, *n, allowed);
@@ -430,6 +507,12 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
     if (config->collisionMargin < 0.0) {
       n->fail("expected a non-negative clearance in [m]");
     }
+    if (config->collisionMargin > limits::kCoordinate) {
+      std::ostringstream out;
+      out << "expected a non-negative clearance in [m] of at most " << limits::kCoordinate
+          << ", got " << config->collisionMargin;
+      n->fail(out.str());
+    }
   }
   if (const ConfigNode* n = root.get("max_attempts")) {
     config->maxAttempts =
@@ -443,9 +526,22 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
   }
   if (const ConfigNode* n = root.get("max_request_seconds")) {
     config->maxRequestSeconds = n->asDouble();
+    // Bounded, so that now + the limit is a time point the clock can hold.
     if (config->maxRequestSeconds <= 0.0) {
       n->fail("expected a positive duration in [s]");
     }
+    if (config->maxRequestSeconds > limits::kRequestSeconds) {
+      std::ostringstream out;
+      out << "expected a positive duration in [s] of at most " << limits::kRequestSeconds
+          << ", got " << config->maxRequestSeconds;
+      n->fail(out.str());
+    }
+  }
+  if (const ConfigNode* n = root.get("max_fixtures_per_request")) {
+    config->maxFixturesPerRequest = static_cast<std::uint32_t>(n->asInt(0, 1000000));
+  }
+  if (const ConfigNode* n = root.get("max_placements_per_request")) {
+    config->maxPlacementsPerRequest = static_cast<std::uint64_t>(n->asInt(1, 1000000000));
   }
   if (const ConfigNode* n = root.get("tf_static")) {
     config->tfStatic = n->asBool();
@@ -470,6 +566,7 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
   if (const ConfigNode* n = root.get("hide")) {
     builder.hide(*n);
   }
+  builder.warnUnplaced();
   // Fails now rather than on the first request when the mode is not built in.
   makeCollisionChecker(config->collisionCheck, config->collisionMargin);
   return config;

@@ -4,8 +4,11 @@
 
 #include <cmath>
 #include <sstream>
+#include <string_view>
+#include <unordered_set>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 
@@ -71,7 +74,9 @@ ConfigNode& ConfigNode::append() {
 }
 
 ConfigNode& ConfigNode::add(const std::string& key) {
-  const std::string path = path_.empty() ? key : path_ + separator_ + key;
+  // Paths appear in messages only: a key with control characters shows escaped.
+  const std::string shown = escapeText(key);
+  const std::string path = path_.empty() ? shown : path_ + separator_ + shown;
   map_.emplace_back(key, ConfigNode(path, separator_));
   return map_.back().second;
 }
@@ -94,7 +99,7 @@ std::string ConfigNode::describeValue() const {
       out << " (" << double_ << ")";
       break;
     case Type::String:
-      out << " ('" << string_ << "')";
+      out << " (" << quoteText(string_) << ")";
       break;
     case Type::List:
       out << " of " << list_.size() << " element" << (list_.size() == 1 ? "" : "s");
@@ -124,7 +129,7 @@ const ConfigNode* ConfigNode::get(const std::string& key) const {
 const ConfigNode& ConfigNode::at(const std::string& key) const {
   const ConfigNode* child = get(key);
   if (child == nullptr) {
-    fail("missing required key '" + key + "'");
+    fail("missing required key " + quoteText(key));
   }
   return *child;
 }
@@ -220,13 +225,15 @@ void ConfigNode::checkKeys(std::initializer_list<const char*> allowed) const {
 }
 
 void ConfigNode::checkKeys(const std::vector<std::string>& allowed) const {
+  // A set: the top level allows every named sampler, and their number is the user's.
+  const std::unordered_set<std::string_view> known(allowed.begin(), allowed.end());
   for (const auto& entry : entries()) {
-    if (std::find(allowed.begin(), allowed.end(), entry.first) == allowed.end()) {
+    if (known.count(entry.first) == 0) {
       std::string list;
       for (const std::string& key : allowed) {
         list += (list.empty() ? "" : ", ") + key;
       }
-      fail("unknown key '" + entry.first + "' (expected one of: " + list + ")");
+      fail("unknown key " + quoteText(entry.first) + " (expected one of: " + list + ")");
     }
   }
 }

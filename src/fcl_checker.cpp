@@ -18,6 +18,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "placement_samplers/text.hpp"
+
 namespace placement_samplers {
 namespace {
 
@@ -72,7 +74,7 @@ class MeshGeometryCache {
             fcl::BVH_OK ||
         model->addSubModel(vertices, triangles) != fcl::BVH_OK ||
         model->endModel() != fcl::BVH_OK) {
-      throw std::runtime_error("FCL could not build a BVH for mesh '" + mesh->source + "'");
+      throw std::runtime_error("FCL could not build a BVH for mesh " + quoteText(mesh->source));
     }
     model->computeLocalAABB();
     entries_[mesh.get()] = {mesh, model};

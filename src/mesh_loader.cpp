@@ -8,11 +8,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <system_error>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/input_files.hpp"
+#include "placement_samplers/limits.hpp"
+#include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 namespace fs = std::filesystem;
@@ -24,18 +26,36 @@ constexpr const char* kFileScheme = "file://";
 
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
-/// The <name> of a package.xml, or "" when it cannot be read.
+/// The <name> of a package.xml, or "" when it cannot be read (or is larger than a megabyte).
 std::string packageName(const fs::path& packageXml) {
-  std::ifstream in(packageXml);
-  if (!in) {
+  std::string s;
+  try {
+    s = readFileBounded(packageXml.string(), std::size_t{1} << 20, "package.xml");
+  } catch (const ConfigError&) {
     return "";
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  static const std::regex kName("<name>\\s*([^<\\s]+)\\s*</name>");
-  std::smatch match;
-  const std::string s = text.str();
-  return std::regex_search(s, match, kName) ? match[1].str() : "";
+  // The first <name>\s*([^<\s]+)\s*</name>, matched by hand: std::regex recurses per character.
+  const auto space = [](char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+  };
+  for (std::size_t at = s.find("<name>"); at != std::string::npos; at = s.find("<name>", at + 1)) {
+    std::size_t i = at + 6;
+    while (i < s.size() && space(s[i])) {
+      ++i;
+    }
+    const std::size_t begin = i;
+    while (i < s.size() && s[i] != '<' && !space(s[i])) {
+      ++i;
+    }
+    const std::size_t end = i;
+    while (i < s.size() && space(s[i])) {
+      ++i;
+    }
+    if (end > begin && s.compare(i, 7, "</name>") == 0) {
+      return s.substr(begin, end - begin);
+    }
+  }
+  return "";
 }
 
 bool isFile(const fs::path& p) {
@@ -78,29 +98,51 @@ std::string vectorText(const Eigen::Vector3d& v) {
   return out.str();
 }
 
-/// Appends the triangles of @p node and its children, in the frame of the root's parent.
-void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
-             const Eigen::Vector3d& scale, Mesh& out) {
-  const aiMatrix4x4 transform = parent * node.mTransformation;
-  for (unsigned m = 0; m < node.mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
-    const int base = static_cast<int>(out.vertices.size());
-    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-      const aiVector3D p = transform * mesh.mVertices[v];
-      out.vertices.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
-    }
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices == 3) {  // points and lines do not collide
-        out.triangles.emplace_back(base + static_cast<int>(face.mIndices[0]),
-                                   base + static_cast<int>(face.mIndices[1]),
-                                   base + static_cast<int>(face.mIndices[2]));
+/// Appends the triangles of @p root and the nodes below it, in the frame of the root's parent,
+/// walking the node tree with a stack of its own (depth first, children in order, as a
+/// recursion would). Each instance of a mesh counts against @p maxTriangles, checked before
+/// its vertices are copied: a small file that instantiates a large mesh many times stops there.
+void collect(const aiScene& scene, const aiNode& root, const Eigen::Vector3d& scale,
+             std::size_t maxTriangles, const std::string& where, Mesh& out) {
+  std::vector<std::pair<const aiNode*, aiMatrix4x4>> stack{{&root, root.mTransformation}};
+  while (!stack.empty()) {
+    const aiNode& node = *stack.back().first;
+    const aiMatrix4x4 transform = stack.back().second;
+    stack.pop_back();
+    for (unsigned m = 0; m < node.mNumMeshes; ++m) {
+      const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
+      if (mesh.mNumFaces > maxTriangles - out.triangles.size()) {
+        throw ConfigError(where + ": more than " + std::to_string(maxTriangles) +
+                          " triangles (the limit of all meshes of a configuration together is " +
+                          std::to_string(limits::kMeshTriangles) + ")");
+      }
+      const int base = static_cast<int>(out.vertices.size());
+      for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+        const aiVector3D p = transform * mesh.mVertices[v];
+        out.vertices.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
+      }
+      for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        if (face.mNumIndices == 3) {  // points and lines do not collide
+          out.triangles.emplace_back(base + static_cast<int>(face.mIndices[0]),
+                                     base + static_cast<int>(face.mIndices[1]),
+                                     base + static_cast<int>(face.mIndices[2]));
+        }
       }
     }
+    for (unsigned c = node.mNumChildren; c-- > 0;) {
+      stack.emplace_back(node.mChildren[c], transform * node.mChildren[c]->mTransformation);
+    }
   }
-  for (unsigned c = 0; c < node.mNumChildren; ++c) {
-    collect(scene, *node.mChildren[c], transform, scale, out);
+}
+
+/// The file name's extension in lower case, with its dot ("" when it has none).
+std::string lowerExtension(const std::string& path) {
+  std::string extension = fs::path(path).extension().string();
+  for (char& c : extension) {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
+  return extension;
 }
 
 }  // namespace
@@ -138,23 +180,27 @@ std::string findPackageInRosPackagePath(const std::string& package) {
 
 std::string resolveUri(const std::string& uri, const PackageResolver& resolver,
                        const std::string& baseDirectory) {
+  if (uri.find('\0') != std::string::npos) {
+    // The system would read the path only up to it: another file.
+    throw ConfigError(quoteText(uri) + ": a path cannot contain a NUL byte");
+  }
   if (startsWith(uri, kPackageScheme)) {
     const std::string rest = uri.substr(std::char_traits<char>::length(kPackageScheme));
     const std::size_t slash = rest.find('/');
     const std::string package = rest.substr(0, slash);
     const std::string relative = slash == std::string::npos ? "" : rest.substr(slash + 1);
     if (package.empty() || relative.empty()) {
-      throw ConfigError("'" + uri + "': expected package://PACKAGE/PATH");
+      throw ConfigError(quoteText(uri) + ": expected package://PACKAGE/PATH");
     }
     const std::string dir = resolver ? resolver(package) : findPackageInRosPackagePath(package);
     if (dir.empty()) {
       std::string where = "by the package resolver";
       if (!resolver) {
         const char* env = std::getenv("ROS_PACKAGE_PATH");
-        where = env != nullptr ? std::string("in ROS_PACKAGE_PATH (") + env + ")"
+        where = env != nullptr ? "in ROS_PACKAGE_PATH (" + escapeText(env, std::string::npos) + ")"
                                : std::string("(ROS_PACKAGE_PATH is not set)");
       }
-      throw ConfigError("'" + uri + "': package '" + package + "' not found " + where);
+      throw ConfigError(quoteText(uri) + ": package " + quoteText(package) + " not found " + where);
     }
     return (fs::path(dir) / relative).lexically_normal().string();
   }
@@ -162,10 +208,11 @@ std::string resolveUri(const std::string& uri, const PackageResolver& resolver,
   if (startsWith(uri, kFileScheme)) {
     path = uri.substr(std::char_traits<char>::length(kFileScheme));
   } else if (uri.find("://") != std::string::npos) {
-    throw ConfigError("'" + uri + "': unsupported URI scheme (use package://, file:// or a path)");
+    throw ConfigError(quoteText(uri) +
+                      ": unsupported URI scheme (use package://, file:// or a path)");
   }
   if (path.empty()) {
-    throw ConfigError("'" + uri + "': empty path");
+    throw ConfigError(quoteText(uri) + ": empty path");
   }
   fs::path p(path);
   if (p.is_relative() && !baseDirectory.empty()) {
@@ -174,9 +221,10 @@ std::string resolveUri(const std::string& uri, const PackageResolver& resolver,
   return p.lexically_normal().string();
 }
 
-Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale,
-                  const std::string& source) {
-  const std::string where = "mesh '" + source + "'" + (path != source ? " (" + path + ")" : "");
+Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale, const std::string& source,
+                  std::size_t maxTriangles) {
+  const std::string where =
+      "mesh " + quoteText(source) + (path != source ? " (" + escapeText(path) + ")" : "");
   if (!scale.allFinite() || (scale.array() <= 0.0).any()) {
     throw ConfigError(where + ": scale must be three finite positive factors, got " +
                       vectorText(scale));
@@ -189,11 +237,38 @@ Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale,
   if (!fs::is_regular_file(status)) {
     throw ConfigError(where + ": not a regular file");
   }
-  if (!std::ifstream(path, std::ios::binary)) {
-    throw ConfigError(where + ": cannot open the file for reading");
+  // The three formats of the documentation only: assimp's other readers recurse into nested
+  // input we do not check (and assimp picks the reader by the extension).
+  const std::string extension = lowerExtension(path);
+  if (extension != ".stl" && extension != ".dae" && extension != ".obj") {
+    throw ConfigError(where + ": unsupported mesh format " + quoteText(extension) +
+                      " (expected .stl, .dae or .obj)");
   }
-  if (fs::file_size(path, ec) == 0) {
+  const std::uintmax_t bytes = fs::file_size(path, ec);
+  if (ec) {
+    throw ConfigError(where + ": cannot read the mesh file: " + ec.message());
+  }
+  if (bytes == 0) {
     throw ConfigError(where + ": the file is empty");
+  }
+  if (bytes > limits::kMeshBytes) {
+    throw ConfigError(where + ": the mesh file is larger than the limit of " +
+                      std::to_string(limits::kMeshBytes) + " bytes (" +
+                      std::to_string(limits::kMeshBytes >> 20) + " MiB): it has " +
+                      std::to_string(bytes) + " bytes");
+  }
+  // assimp's COLLADA reader recurses per <node> level (10,000 levels overflowed the stack).
+  if (extension == ".dae") {
+    std::string text;
+    try {
+      text = readFileBounded(path, limits::kMeshBytes, "the mesh file");
+    } catch (const ConfigError& e) {
+      throw ConfigError(where + ": " + e.what());
+    }
+    if (xmlNestingDepth(text, limits::kXmlDepth) > limits::kXmlDepth) {
+      throw ConfigError(where + ": XML elements nested more than " +
+                        std::to_string(limits::kXmlDepth) + " levels deep");
+    }
   }
 
   Assimp::Importer importer;
@@ -207,12 +282,13 @@ Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale,
                                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     std::string why = importer.GetErrorString();
-    throw ConfigError(where +
-                      ": cannot read it as a mesh: " + (why.empty() ? "unknown error" : why));
+    throw ConfigError(where + ": cannot read it as a mesh: " +
+                      (why.empty() ? std::string("unknown error") : escapeText(why)));
   }
   Mesh mesh;
   mesh.source = source;
-  collect(*scene, *scene->mRootNode, aiMatrix4x4(), scale, mesh);
+  // The root's own transform applies as the other nodes' do (collect starts from it).
+  collect(*scene, *scene->mRootNode, scale, maxTriangles, where, mesh);
   if (mesh.triangles.empty()) {
     throw ConfigError(where + ": the mesh has no triangles");
   }
@@ -241,7 +317,9 @@ std::shared_ptr<const Mesh> MeshLoader::load(const std::string& uri, const Eigen
   if (it != cache_.end()) {
     return it->second;
   }
-  auto mesh = std::make_shared<const Mesh>(loadMeshFile(path, scale, uri));
+  auto mesh = std::make_shared<const Mesh>(
+      loadMeshFile(path, scale, uri, limits::kMeshTriangles - triangles_));
+  triangles_ += mesh->triangles.size();
   cache_.emplace(key, mesh);
   return mesh;
 }

@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
+#include "placement_samplers/text.hpp"
 #include "placement_samplers/urdf_geometry.hpp"
 
 namespace placement_samplers {
@@ -18,7 +20,47 @@ double positive(const ConfigNode& node) {
     out << "expected a positive size in [m], got " << v;
     node.fail(out.str());
   }
+  if (v > limits::kCoordinate) {
+    std::ostringstream out;
+    out << "expected a positive size in [m] of at most " << limits::kCoordinate << ", got " << v;
+    node.fail(out.str());
+  }
   return v;
+}
+
+/// A vector [x, y, z] [m] within +-limits::kCoordinate.
+Eigen::Vector3d boundedVector(const ConfigNode& node) {
+  const Eigen::Vector3d v = node.asVector3();
+  if ((v.array().abs() > limits::kCoordinate).any()) {
+    std::ostringstream out;
+    out << "expected values within [-" << limits::kCoordinate << ", " << limits::kCoordinate
+        << "] m, got [" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+    node.fail(out.str());
+  }
+  return v;
+}
+
+/// Why @p shapes under @p orientation reach beyond limits::kCoordinate from the origin (or are
+/// not finite), or "" when they do not: a mesh's vertices, a URDF's joint origins can be
+/// anything, and the derived offsets end up in every pose.
+std::string geometryProblem(const std::vector<Shape>& shapes,
+                            const Eigen::Quaterniond& orientation) {
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const Shape& shape = shapes[i];
+    const Bounds b = shapeBounds(shape, orientation);
+    // Each compared on its own: a comparison with NaN is false.
+    const bool inside = std::abs(b.bottomZ) <= limits::kCoordinate &&
+                        std::abs(b.topZ) <= limits::kCoordinate &&
+                        b.horizontalRadius <= limits::kCoordinate;
+    if (!shape.pose.matrix().allFinite() || !inside) {
+      std::ostringstream out;
+      out << "its geometry (" << shapeTypeName(shape.type) << " " << i << ") must lie within "
+          << limits::kCoordinate << " m of its origin, got bottom " << b.bottomZ << ", top "
+          << b.topZ << ", horizontal radius " << b.horizontalRadius;
+      return out.str();
+    }
+  }
+  return "";
 }
 
 Shape parseMesh(const std::string& name, const ConfigNode& node, MeshLoader& meshes) {
@@ -38,7 +80,7 @@ Shape parseMesh(const std::string& name, const ConfigNode& node, MeshLoader& mes
   try {
     shape.mesh = meshes.load(uriText, scale);
   } catch (const ConfigError& e) {
-    uri.fail("object '" + name + "': " + e.what());
+    uri.fail("object " + quoteText(name) + ": " + e.what());
   }
   return shape;
 }
@@ -61,7 +103,7 @@ std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
       l->fail("expected a link name");
     }
   }
-  const std::string object = "object '" + name + "': ";
+  const std::string object = "object " + quoteText(name) + ": ";
   std::string text;
   std::string label;
   std::string meshBase;
@@ -73,7 +115,7 @@ std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
     } catch (const ConfigError& e) {
       file->fail(object + "urdf_file " + e.what());
     }
-    label = "urdf_file '" + uri + "'" + (path != uri ? " (" + path + ")" : "");
+    label = "urdf_file " + quoteText(uri) + (path != uri ? " (" + escapeText(path) + ")" : "");
     try {
       text = readTextFile(path);
     } catch (const ConfigError& e) {
@@ -83,7 +125,7 @@ std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
     meshBase = std::filesystem::path(path).parent_path().string();
   } else {
     const std::string& paramName = param->asString();
-    label = "urdf_param '" + paramName + "'";
+    label = "urdf_param " + quoteText(paramName);
     if (!options.urdfParam) {
       param->fail(object + "urdf_param is only available in the node (use urdf_file here)");
     }
@@ -111,10 +153,14 @@ Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader
         {"shape", "size", "horizontal_radius", "bottom_offset", "top_offset", "init_orientation"});
     const ConfigNode& size = node.at("size");
     const Eigen::Vector3d s = size.asVector3();
-    if ((s.array() <= 0.0).any()) {
+    const bool positive = (s.array() > 0.0).all();
+    if (!positive || (s.array() > limits::kCoordinate).any()) {
       std::ostringstream out;
-      out << "expected three positive extents [x, y, z] in [m], got [" << s.x() << ", " << s.y()
-          << ", " << s.z() << "]";
+      out << "expected three positive extents [x, y, z] in [m]";
+      if (positive) {
+        out << " of at most " << limits::kCoordinate;
+      }
+      out << ", got [" << s.x() << ", " << s.y() << ", " << s.z() << "]";
       size.fail(out.str());
     }
     return Shape::box(s);
@@ -131,7 +177,7 @@ Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader
                     "init_orientation"});
     return Shape::sphere(positive(node.at("radius")));
   }
-  shapeNode.fail("expected one of box, cylinder, sphere, capsule, mesh, got '" + type + "'");
+  shapeNode.fail("expected one of box, cylinder, sphere, capsule, mesh, got " + quoteText(type));
 }
 
 }  // namespace
@@ -152,6 +198,11 @@ void validateShape(const Shape& shape) {
     if (!std::isfinite(v) || v <= 0.0) {
       std::ostringstream out;
       out << what << " must be finite and positive, got " << v;
+      throw std::invalid_argument(out.str());
+    }
+    if (v > limits::kCoordinate) {
+      std::ostringstream out;
+      out << what << " must be at most " << limits::kCoordinate << " m, got " << v;
       throw std::invalid_argument(out.str());
     }
   };
@@ -207,18 +258,28 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
     if (overrides.horizontalRadius < 0.0) {
       r->fail("expected a non-negative radius in [m]");
     }
+    if (overrides.horizontalRadius > limits::kCoordinate) {
+      std::ostringstream out;
+      out << "expected a non-negative radius in [m] of at most " << limits::kCoordinate << ", got "
+          << overrides.horizontalRadius;
+      r->fail(out.str());
+    }
   }
   if (const ConfigNode* b = node.get("bottom_offset")) {
     overrides.hasBottomOffset = true;
-    overrides.bottomOffset = b->asVector3();
+    overrides.bottomOffset = boundedVector(*b);
   }
   if (const ConfigNode* t = node.get("top_offset")) {
     overrides.hasTopOffset = true;
-    overrides.topOffset = t->asVector3();
+    overrides.topOffset = boundedVector(*t);
   }
   Eigen::Quaterniond init = Eigen::Quaterniond::Identity();
   if (const ConfigNode* q = node.get("init_orientation")) {
     init = parseQuaternion(*q);
+  }
+  const std::string problem = geometryProblem(shapes, init);
+  if (!problem.empty()) {
+    node.fail("object " + quoteText(name) + ": " + problem);
   }
   return makeObject(name, std::move(shapes), init, overrides);
 }

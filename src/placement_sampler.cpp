@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "placement_samplers/text.hpp"
+
 namespace placement_samplers {
 
 Reference Reference::named(const std::string& name) {
@@ -23,7 +25,7 @@ std::string Reference::describe() const {
     case Kind::Default:
       return "reference_pos";
     case Kind::Name:
-      return "'" + name + "'";
+      return quoteText(name);
     case Kind::Point: {
       std::ostringstream out;
       out << "[" << point.x() << ", " << point.y() << ", " << point.z() << "]";

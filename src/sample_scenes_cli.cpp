@@ -4,6 +4,7 @@
 #include <atomic>
 #include <filesystem>
 #include <limits>
+#include <new>
 #include <stdexcept>
 #include <thread>
 
@@ -12,6 +13,7 @@
 #include "placement_samplers/random.hpp"
 #include "placement_samplers/scene_generator.hpp"
 #include "placement_samplers/scene_json.hpp"
+#include "placement_samplers/text.hpp"
 #include "parallel.hpp"
 
 namespace placement_samplers {
@@ -32,7 +34,7 @@ struct UsageError : std::runtime_error {
 
 std::uint64_t parseUnsigned(const std::string& flag, const std::string& text, std::uint64_t max) {
   if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
-    throw UsageError(flag + ": expected a non-negative integer, got '" + text + "'");
+    throw UsageError(flag + ": expected a non-negative integer, got " + quoteText(text));
   }
   try {
     const unsigned long long v = std::stoull(text);
@@ -47,6 +49,8 @@ std::uint64_t parseUnsigned(const std::string& flag, const std::string& text, st
 
 /// Scenes per block: the output is written block by block, so memory stays bounded for any K.
 constexpr std::uint64_t kBlock = 8192;
+/// Placements per block, at most (unless one scene has more): about 70 MB of results and text.
+constexpr std::uint64_t kBlockPlacements = 1 << 20;
 
 /// Samples and prints scenes 0 .. count - 1 in blocks; formatting is spread over the threads
 /// too, since printing a scene costs more than sampling it. @return true when all succeeded.
@@ -56,8 +60,10 @@ bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepare
       threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::string> texts(workers);
   bool allPlaced = true;
-  for (std::uint64_t first = 0; first < count; first += kBlock) {
-    const std::uint64_t n = std::min(kBlock, count - first);
+  const std::uint64_t perScene = std::max<std::uint64_t>(generator.placementsPerScene(prepared), 1);
+  const std::uint64_t block = std::clamp<std::uint64_t>(kBlockPlacements / perScene, 1, kBlock);
+  for (std::uint64_t first = 0; first < count; first += block) {
+    const std::uint64_t n = std::min(block, count - first);
     const std::vector<SceneResult> results =
         generator.sampleSceneRange(prepared, seed, first, n, threads);
     const std::size_t slices = static_cast<std::size_t>(std::min<std::uint64_t>(workers, n));
@@ -113,7 +119,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
                                  flag == "--sampler" || flag == "--collision-check" ||
                                  flag == "--max-attempts" || flag == "--threads"
                              ? flag + ": missing value"
-                             : "unknown argument '" + flag + "'");
+                             : "unknown argument " + quoteText(flag));
       }
       const std::string& value = args[++i];
       if (flag == "--config") {
@@ -133,7 +139,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       } else if (flag == "--threads") {
         threads = static_cast<unsigned>(parseUnsigned(flag, value, 1024));
       } else {
-        throw UsageError("unknown argument '" + flag + "'");
+        throw UsageError("unknown argument " + quoteText(flag));
       }
     }
     if (configPath.empty()) {
@@ -144,18 +150,24 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     return 2;
   }
 
-  ConfigNode tree;
+  const std::string shownPath = escapeText(configPath);
+  // Memory is bounded by the limits on configurations and answers; should it run out anyway
+  // (a tight ulimit), the user gets a message and status 2 rather than an abort.
   try {
-    tree = loadYamlFile(configPath);
-  } catch (const ConfigError& e) {
-    err << "sample_scenes: " << e.what() << "\n";
-    return 2;
-  }
-  try {
+    ConfigNode tree;
+    try {
+      tree = loadYamlFile(configPath);
+    } catch (const ConfigError& e) {
+      err << "sample_scenes: " << e.what() << "\n";
+      return 2;
+    }
     BuildOptions options;
     // Relative mesh and URDF paths are relative to the configuration file.
     options.baseDirectory = std::filesystem::path(configPath).parent_path().string();
     const SceneGenerator generator(buildSceneConfig(tree, options));
+    for (const std::string& warning : generator.config().warnings) {
+      err << "sample_scenes: " << shownPath << ": warning: " << warning << "\n";
+    }
     SampleRequest request;
     request.sampler = sampler;
     request.maxAttempts = maxAttempts;
@@ -165,8 +177,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       try {
         request.collisionCheck = parseCollisionMode(node.at("collision_check"));
       } catch (const ConfigError&) {
-        err << "sample_scenes: --collision-check: expected radius, fcl or radius_and_fcl, got '"
-            << mode << "'\n";
+        err << "sample_scenes: --collision-check: expected radius, fcl or radius_and_fcl, got "
+            << quoteText(mode) << "\n";
         return 2;
       }
     }
@@ -176,9 +188,13 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     }
     return writeScenes(generator, prepared, seed, scenes, threads, out) ? 0 : 1;
   } catch (const ConfigError& e) {
-    err << "sample_scenes: " << configPath << ": " << e.what() << "\n";
+    err << "sample_scenes: " << shownPath << ": " << e.what() << "\n";
   } catch (const RequestError& e) {
     err << "sample_scenes: " << e.what() << "\n";
+  } catch (const std::bad_alloc&) {
+    err << "sample_scenes: " << shownPath << ": out of memory\n";
+  } catch (const std::exception& e) {
+    err << "sample_scenes: " << shownPath << ": " << escapeText(e.what()) << "\n";
   }
   return 2;
 }

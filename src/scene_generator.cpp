@@ -6,10 +6,14 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <string_view>
 #include <thread>
+#include <unordered_set>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/object_config.hpp"
+#include "placement_samplers/text.hpp"
 #include "parallel.hpp"
 
 namespace placement_samplers {
@@ -70,14 +74,22 @@ class SceneGenerator::Worker {
  private:
   SceneResult sample(std::uint64_t seed, std::uint64_t index) {
     context_.clear();
-    for (const FixtureSpec& f : request_.fixtures) {
+    SceneResult result;
+    result.seed = seed;
+    result.index = index;
+    const std::vector<FixtureSpec>& fixtures = request_.fixtures;
+    for (std::size_t i = 0; i < fixtures.size(); ++i) {
+      // Adding thousands of fixtures to FCL's broadphase takes long too: the clock covers it.
+      if ((i & 63u) == 63u && expired()) {
+        result.message = "not sampled: the request ran out of time while adding its " +
+                         std::to_string(fixtures.size()) + " fixtures";
+        return result;
+      }
+      const FixtureSpec& f = fixtures[i];
       context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
     }
     // Each result takes the placements away: one allocation of the right size, not a growth.
     context_.placements().reserve(objects_);
-    SceneResult result;
-    result.seed = seed;
-    result.index = index;
     result.success = request_.sampler->sample(context_, request_.reference, request_.onTop);
     if (!result.success) {
       result.message = context_.failure() ? context_.failure()->message : "sampling failed";
@@ -103,17 +115,19 @@ SceneGenerator::SceneGenerator(std::shared_ptr<const SceneConfig> config)
 
 namespace {
 
-std::optional<std::chrono::steady_clock::time_point> deadlineOf(const PreparedRequest& request) {
-  if (request.maxSeconds <= 0.0) {
-    return std::nullopt;
-  }
-  return std::chrono::steady_clock::now() +
-         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-             std::chrono::duration<double>(request.maxSeconds));
-}
-
 bool isUnit(const Eigen::Quaterniond& q) {
   return q.coeffs().allFinite() && std::abs(q.norm() - 1.0) <= 1e-3;
+}
+
+/// Finite and within +-limits::kCoordinate: sums of such values stay finite.
+bool isBounded(const Eigen::Vector3d& v) {
+  return v.allFinite() && (v.array().abs() <= limits::kCoordinate).all();
+}
+
+std::string coordinateLimit() {
+  std::ostringstream out;
+  out << "finite and within [-" << limits::kCoordinate << ", " << limits::kCoordinate << "] m";
+  return out.str();
 }
 
 }  // namespace
@@ -139,6 +153,8 @@ bool reachesUniform(const PlacementSampler& sampler, Field SampleArgs::*field) {
 }  // namespace
 
 PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
+  // The request's clock starts here: checking thousands of fixtures takes time too.
+  const auto start = std::chrono::steady_clock::now();
   const SceneConfig& config = *config_;
   PreparedRequest prepared;
   prepared.collisionCheck = request.collisionCheck.value_or(config.collisionCheck);
@@ -146,29 +162,57 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   if (!std::isfinite(request.maxSeconds) || request.maxSeconds < 0.0) {
     throw RequestError("the time limit must be a non-negative number of seconds");
   }
+  if (request.maxSeconds > limits::kRequestSeconds) {
+    std::ostringstream out;
+    out << "the time limit must be at most " << limits::kRequestSeconds << " s, got "
+        << request.maxSeconds;
+    throw RequestError(out.str());
+  }
   prepared.maxSeconds = request.maxSeconds;
+  if (request.maxSeconds > 0.0) {
+    prepared.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                    std::chrono::duration<double>(request.maxSeconds));
+  }
+  if (request.fixtures.size() > config.maxFixturesPerRequest) {
+    throw RequestError("the request has " + std::to_string(request.fixtures.size()) +
+                       " fixtures, more than max_fixtures_per_request (" +
+                       std::to_string(config.maxFixturesPerRequest) + ")");
+  }
   try {
     makeCollisionChecker(prepared.collisionCheck, config.collisionMargin);
   } catch (const ConfigError& e) {
     throw RequestError(e.what());
   }
   prepared.fixtures = config.fixtures;
+  prepared.fixtures.reserve(config.fixtures.size() + request.fixtures.size());
+  // Fixture names seen so far: a set, so that many fixtures cost near-linear time.
+  std::unordered_set<std::string_view> fixtureNames;
+  for (const FixtureSpec& f : config.fixtures) {
+    fixtureNames.insert(f.name);
+  }
 
-  for (const RequestFixture& f : request.fixtures) {
-    const std::string label = "fixture '" + f.name + "'";
+  for (std::size_t i = 0; i < request.fixtures.size(); ++i) {
+    const RequestFixture& f = request.fixtures[i];
+    if ((i & 63u) == 63u && prepared.deadline &&
+        std::chrono::steady_clock::now() > *prepared.deadline) {
+      throw RequestError("the request ran out of time while checking its " +
+                         std::to_string(request.fixtures.size()) + " fixtures");
+    }
+    const std::string label = "fixture " + quoteText(f.name);
     if (!isValidName(f.name)) {
-      throw RequestError("fixture name '" + f.name + "' must match [A-Za-z0-9_-]+");
+      throw RequestError("fixture name " + quoteText(f.name) + " must match [A-Za-z0-9_-]+");
     }
     if (config.findObject(f.name) != nullptr) {
       throw RequestError(label + ": the name is already a configured object");
     }
-    for (const FixtureSpec& other : prepared.fixtures) {
-      if (other.name == f.name) {
-        throw RequestError(label + ": the name is used twice");
-      }
+    if (fixtureNames.count(f.name) != 0) {
+      throw RequestError(label + ": the name is used twice");
     }
     if (!f.position.allFinite()) {
       throw RequestError(label + ": position must be finite");
+    }
+    if (!isBounded(f.position)) {
+      throw RequestError(label + ": position must be " + coordinateLimit());
     }
     if (!isUnit(f.orientation)) {
       throw RequestError(label + ": orientation must be a finite unit quaternion");
@@ -181,7 +225,7 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
     if (!f.object.empty()) {
       const ObjectModel* object = config.findObject(f.object);
       if (object == nullptr) {
-        throw RequestError(label + ": unknown object '" + f.object + "'");
+        throw RequestError(label + ": unknown object " + quoteText(f.object));
       }
       spec.object = std::make_shared<ObjectModel>(reorientedObject(*object, spec.orientation));
     } else {
@@ -196,6 +240,8 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
       spec.object = std::make_shared<ObjectModel>(makeObject(f.name, {*f.shape}, spec.orientation));
     }
     prepared.fixtures.push_back(std::move(spec));
+    // A view of the name in the request, which outlives this function.
+    fixtureNames.insert(f.name);
   }
 
   SampleArgs args;
@@ -208,9 +254,14 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
       config.root->collectSamplers(all);
       std::string names;
       for (const PlacementSampler* s : all) {
-        names += (names.empty() ? "" : ", ") + s->name();
+        if (names.size() > 2000) {
+          names += ", ...";
+          break;
+        }
+        names += (names.empty() ? "" : ", ") + escapeText(s->name());
       }
-      throw RequestError("unknown sampler '" + request.sampler + "' (configured: " + names + ")");
+      throw RequestError("unknown sampler " + quoteText(request.sampler) +
+                         " (configured: " + names + ")");
     }
   }
 
@@ -218,14 +269,15 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   if (reference.kind == Reference::Kind::Point && !reference.point.allFinite()) {
     throw RequestError("reference_point must be finite");
   }
+  if (reference.kind == Reference::Kind::Point && !isBounded(reference.point)) {
+    throw RequestError("reference_point must be " + coordinateLimit());
+  }
   if (reference.kind == Reference::Kind::Name) {
-    bool known = config.findObject(reference.name) != nullptr;
-    for (const FixtureSpec& f : prepared.fixtures) {
-      known = known || f.name == reference.name;
-    }
+    const bool known =
+        config.findObject(reference.name) != nullptr || fixtureNames.count(reference.name) != 0;
     if (!known) {
-      throw RequestError("unknown reference '" + reference.name +
-                         "' (not a configured object or a fixture)");
+      throw RequestError("unknown reference " + quoteText(reference.name) +
+                         " (not a configured object or a fixture)");
     }
   }
   // A sampler run alone keeps the sample_args its parent gives it; the call fills in the rest.
@@ -245,16 +297,35 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   return prepared;
 }
 
+std::uint64_t SceneGenerator::placementsPerScene(const PreparedRequest& request) const {
+  return request.sampler->objects().size();
+}
+
+void SceneGenerator::checkAnswerSize(const PreparedRequest& request,
+                                     std::uint64_t numScenes) const {
+  const std::uint64_t perScene = placementsPerScene(request);
+  const std::uint64_t limit = config_->maxPlacementsPerRequest;
+  // perScene * numScenes > limit, without overflowing.
+  if (perScene != 0 && numScenes > limit / perScene) {
+    throw RequestError(std::to_string(numScenes) + " scenes of " + std::to_string(perScene) +
+                       " placements each exceed max_placements_per_request (" +
+                       std::to_string(limit) + "): ask for at most " +
+                       std::to_string(std::max<std::uint64_t>(limit / perScene, 1)) +
+                       " scenes per request");
+  }
+}
+
 SceneResult SceneGenerator::sampleScene(const PreparedRequest& request, std::uint64_t seed,
                                         std::uint64_t index) const {
   Worker worker(request, config_->collisionMargin);
-  worker.setDeadline(deadlineOf(request));
+  worker.setDeadline(request.deadline);
   return worker.run(seed, index);
 }
 
 std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& request,
                                                       std::uint64_t seed, std::uint64_t count,
                                                       unsigned threads) const {
+  checkAnswerSize(request, count);
   return sampleSceneRange(request, seed, 0, count, threads);
 }
 
@@ -269,7 +340,7 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
   threads =
       static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(count, 1)));
   std::atomic<std::uint64_t> next{0};
-  const auto deadline = deadlineOf(request);
+  const auto deadline = request.deadline;
   auto work = [&] {
     Worker worker(request, config_->collisionMargin);
     worker.setDeadline(deadline);

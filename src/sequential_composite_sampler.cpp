@@ -1,38 +1,45 @@
 #include "placement_samplers/sequential_composite_sampler.hpp"
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/text.hpp"
 #include "placement_samplers/uniform_random_sampler.hpp"
 
 namespace placement_samplers {
 
 SequentialCompositeSampler::SequentialCompositeSampler(std::string name)
-    : PlacementSampler(std::move(name)) {}
+    : PlacementSampler(std::move(name)) {
+  samplerNames_.insert(this->name());
+}
 
 void SequentialCompositeSampler::checkNotPresent(const std::vector<ObjectPtr>& objects) const {
-  const std::vector<ObjectPtr> present = this->objects();
   for (const ObjectPtr& object : objects) {
-    for (const ObjectPtr& other : present) {
-      if (other->name == object->name) {
-        throw ConfigError("sampler '" + name() + "': object '" + object->name +
-                          "' already has a sampler");
-      }
+    if (objectNames_.count(object->name) != 0) {
+      throw ConfigError("sampler " + quoteText(name()) + ": object " + quoteText(object->name) +
+                        " already has a sampler");
     }
   }
 }
 
 void SequentialCompositeSampler::appendSampler(SamplerPtr sampler, SampleArgs args) {
   if (!sampler) {
-    throw ConfigError("sampler '" + name() + "': cannot append a null sampler");
+    throw ConfigError("sampler " + quoteText(name()) + ": cannot append a null sampler");
   }
   std::vector<const PlacementSampler*> incoming;
   sampler->collectSamplers(incoming);
   for (const PlacementSampler* s : incoming) {
-    if (find(s->name(), nullptr) != nullptr) {
-      throw ConfigError("sampler '" + name() + "': a sampler named '" + s->name() +
-                        "' is already here");
+    if (samplerNames_.count(s->name()) != 0) {
+      throw ConfigError("sampler " + quoteText(name()) + ": a sampler named " +
+                        quoteText(s->name()) + " is already here");
     }
   }
-  checkNotPresent(sampler->objects());
+  const std::vector<ObjectPtr> objects = sampler->objects();
+  checkNotPresent(objects);
+  for (const PlacementSampler* s : incoming) {
+    samplerNames_.insert(s->name());
+  }
+  for (const ObjectPtr& object : objects) {
+    objectNames_.insert(object->name);
+  }
   children_.push_back(Child{std::move(sampler), std::move(args)});
 }
 
@@ -44,17 +51,23 @@ void SequentialCompositeSampler::addObjectsToSampler(const std::string& samplerN
                                                      const std::vector<ObjectPtr>& objects) {
   auto* target = dynamic_cast<UniformRandomSampler*>(findMutable(samplerName));
   if (target == nullptr) {
-    throw ConfigError("sampler '" + name() + "': no uniform sub-sampler named '" + samplerName +
-                      "'");
+    throw ConfigError("sampler " + quoteText(name()) + ": no uniform sub-sampler named " +
+                      quoteText(samplerName));
   }
   checkNotPresent(objects);
   target->addObjects(objects);
+  for (const ObjectPtr& object : objects) {
+    objectNames_.insert(object->name);
+  }
 }
 
 void SequentialCompositeSampler::hide(const std::vector<ObjectPtr>& objects) {
   checkNotPresent(objects);
   if (auto* existing = dynamic_cast<UniformRandomSampler*>(findMutable(kHideSamplerName))) {
     existing->addObjects(objects);
+    for (const ObjectPtr& object : objects) {
+      objectNames_.insert(object->name);
+    }
     return;
   }
   UniformSamplerParams params;
@@ -97,6 +110,7 @@ void SequentialCompositeSampler::reset() {
   for (Child& child : children_) {
     child.sampler->reset();
   }
+  objectNames_.clear();
 }
 
 void SequentialCompositeSampler::collectUniform(

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <unordered_set>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/sin_cos.hpp"
+#include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -42,7 +45,10 @@ RotationSpec RotationSpec::range(double a, double b) {
 UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSamplerParams& params,
                                            const std::vector<ObjectPtr>& objects)
     : PlacementSampler(std::move(name)), params_(params) {
-  const std::string where = "sampler '" + this->name() + "': ";
+  const std::string where = "sampler " + quoteText(this->name()) + ": ";
+  std::ostringstream bound;
+  bound << "within [-" << limits::kCoordinate << ", " << limits::kCoordinate << "] m";
+  const auto inBounds = [](double v) { return std::abs(v) <= limits::kCoordinate; };
   for (int axis = 0; axis < 2; ++axis) {
     const Eigen::Vector2d& r = axis == 0 ? params_.xRange : params_.yRange;
     const std::string key = axis == 0 ? "x_range" : "y_range";
@@ -52,6 +58,10 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
     if (r[0] > r[1]) {
       throw ConfigError(where + key + " must be [min, max] with min <= max, got " + rangeText(r));
     }
+    // Positions are sums of such values: bounded, they stay finite (so does the width).
+    if (!inBounds(r[0]) || !inBounds(r[1])) {
+      throw ConfigError(where + key + " must lie " + bound.str() + ", got " + rangeText(r));
+    }
   }
   if (params_.rotationAxis < 0 || params_.rotationAxis > 2) {
     throw ConfigError(where + "rotation_axis must be x, y or z");
@@ -59,11 +69,30 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
   if (!std::isfinite(params_.rotation.low) || !std::isfinite(params_.rotation.high)) {
     throw ConfigError(where + "rotation must be finite");
   }
+  // U(low, high) is low + (high - low) u: the width must be finite too.
+  if (!std::isfinite(params_.rotation.high - params_.rotation.low)) {
+    std::ostringstream out;
+    out << where << "rotation [" << params_.rotation.low << ", " << params_.rotation.high
+        << "] is too wide: its width overflows a double";
+    throw ConfigError(out.str());
+  }
   if (!params_.referencePos.allFinite()) {
     throw ConfigError(where + "reference_pos must be finite");
   }
+  if ((params_.referencePos.array().abs() > limits::kCoordinate).any()) {
+    std::ostringstream out;
+    out << where << "reference_pos must lie " << bound.str() << ", got ["
+        << params_.referencePos.x() << ", " << params_.referencePos.y() << ", "
+        << params_.referencePos.z() << "]";
+    throw ConfigError(out.str());
+  }
   if (!std::isfinite(params_.zOffset)) {
     throw ConfigError(where + "z_offset must be finite");
+  }
+  if (!inBounds(params_.zOffset)) {
+    std::ostringstream out;
+    out << where << "z_offset must lie " << bound.str() << ", got " << params_.zOffset;
+    throw ConfigError(out.str());
   }
   if (params_.maxAttempts == 0) {
     throw ConfigError(where + "max_attempts must be at least 1");
@@ -82,12 +111,14 @@ Eigen::Vector2d UniformRandomSampler::effectiveRange(const ObjectModel& object, 
 }
 
 void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
+  std::unordered_set<std::string_view> names;  // a set: thousands of objects are near-linear
+  for (const Entry& e : entries_) {
+    names.insert(e.object->name);
+  }
   for (const ObjectPtr& object : objects) {
-    for (const Entry& e : entries_) {
-      if (e.object->name == object->name) {
-        throw ConfigError("sampler '" + name() + "': object '" + object->name +
-                          "' is already in this sampler");
-      }
+    if (!names.insert(object->name).second) {
+      throw ConfigError("sampler " + quoteText(name()) + ": object " + quoteText(object->name) +
+                        " is already in this sampler");
     }
     Entry entry{object, effectiveRange(*object, 0), effectiveRange(*object, 1)};
     for (int axis = 0; axis < 2; ++axis) {
@@ -95,9 +126,9 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
       if (r[0] > r[1]) {
         const char* key = axis == 0 ? "x_range" : "y_range";
         std::ostringstream out;
-        out << "sampler '" << name() << "': " << key << " "
+        out << "sampler " << quoteText(name()) << ": " << key << " "
             << rangeText(axis == 0 ? params_.xRange : params_.yRange)
-            << " leaves no room for object '" << object->name << "' (horizontal radius "
+            << " leaves no room for object " << quoteText(object->name) << " (horizontal radius "
             << object->horizontalRadius
             << " m) with ensure_object_boundary_in_range on: the range must be at least "
             << 2.0 * object->horizontalRadius << " m wide";
@@ -150,8 +181,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
     if (ref == nullptr) {
       Failure failure;
       failure.sampler = name();
-      failure.message = "sampler '" + name() + "': reference '" + reference.name +
-                        "' is neither a fixture nor an object placed before this sampler";
+      failure.message = "sampler " + quoteText(name()) + ": reference " +
+                        quoteText(reference.name) +
+                        " is neither a fixture nor an object placed before this sampler";
       context.fail(std::move(failure));
       return false;
     }
@@ -187,8 +219,8 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
       failure.object = object.name;
       failure.sampler = name();
       failure.attempts = attempt - 1;
-      failure.message = "stopped placing object '" + object.name + "' with sampler '" + name() +
-                        "' after " + std::to_string(attempt - 1) +
+      failure.message = "stopped placing object " + quoteText(object.name) + " with sampler " +
+                        quoteText(name()) + " after " + std::to_string(attempt - 1) +
                         " attempts: the request ran out of time";
       context.fail(std::move(failure));
       return false;
@@ -217,16 +249,16 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
   failure.sampler = name();
   failure.attempts = limit;
   std::ostringstream out;
-  out << "could not place object '" << object.name << "' with sampler '" << name() << "' in "
-      << limit << " attempts";
+  out << "could not place object " << quoteText(object.name) << " with sampler "
+      << quoteText(name()) << " in " << limit << " attempts";
   if (counts != nullptr && !counts->empty()) {
     const auto most = std::max_element(counts->begin(), counts->end());
     const std::size_t index = static_cast<std::size_t>(most - counts->begin());
     failure.blocker = context.entries()[index].name;
     failure.blockerCount = *most;
     out << ": " << *most << " of them overlapped "
-        << (context.entries()[index].fixture ? "fixture" : "object") << " '" << failure.blocker
-        << "'";
+        << (context.entries()[index].fixture ? "fixture" : "object") << " "
+        << quoteText(failure.blocker);
     std::size_t others = 0;
     for (std::size_t i = 0; i < counts->size(); ++i) {
       others += (i != index && (*counts)[i] > 0) ? 1 : 0;

@@ -11,6 +11,9 @@
 #include <system_error>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/input_files.hpp"
+#include "placement_samplers/limits.hpp"
+#include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -58,7 +61,7 @@ urdf::ModelInterfaceSharedPtr parse(const std::string& xml) {
     if (why.empty()) {
       why = "urdfdom gave no reason";
     }
-    throw ConfigError("malformed URDF: " + why);
+    throw ConfigError("malformed URDF: " + escapeText(why));
   }
   return model;
 }
@@ -98,8 +101,8 @@ class ShapeCollector {
     const std::vector<urdf::CollisionSharedPtr> collisions = collisionsOf(link);
     for (std::size_t i = 0; i < collisions.size(); ++i) {
       const std::string where =
-          "link '" + link.name + "', collision " + std::to_string(i) +
-          (collisions[i]->name.empty() ? "" : " '" + collisions[i]->name + "'");
+          "link " + quoteText(link.name) + ", collision " + std::to_string(i) +
+          (collisions[i]->name.empty() ? "" : " " + quoteText(collisions[i]->name));
       if (!collisions[i]->geometry) {
         throw ConfigError(where + ": no geometry");
       }
@@ -109,16 +112,28 @@ class ShapeCollector {
     }
   }
 
-  /// @p link and every link below it.
-  void addTree(const urdf::Link& link, const Eigen::Isometry3d& linkPose) {
-    addLink(link, linkPose);
-    for (const urdf::JointSharedPtr& joint : link.child_joints) {
-      const auto it = children_.find(joint->child_link_name);
-      if (it == children_.end() || !it->second) {
-        continue;
+  /// @p link and every link below it, depth first with children in joint order, walked with a
+  /// stack of its own: a chain of links is as deep as it is long (30,000 overflowed the stack).
+  void addTree(const urdf::Link& root, const Eigen::Isometry3d& rootPose) {
+    std::vector<std::pair<const urdf::Link*, Eigen::Isometry3d>> stack{{&root, rootPose}};
+    std::size_t visited = 0;
+    while (!stack.empty()) {
+      if (++visited > children_.size()) {
+        throw ConfigError("malformed URDF: the joints reach a link twice");  // urdfdom prevents it
       }
-      // Zero joint values: the child frame is the joint frame, for every joint type.
-      addTree(*it->second, linkPose * toIsometry(joint->parent_to_joint_origin_transform));
+      const urdf::Link& link = *stack.back().first;
+      const Eigen::Isometry3d linkPose = stack.back().second;
+      stack.pop_back();
+      addLink(link, linkPose);
+      for (auto joint = link.child_joints.rbegin(); joint != link.child_joints.rend(); ++joint) {
+        const auto it = children_.find((*joint)->child_link_name);
+        if (it == children_.end() || !it->second) {
+          continue;
+        }
+        // Zero joint values: the child frame is the joint frame, for every joint type.
+        stack.emplace_back(it->second.get(),
+                           linkPose * toIsometry((*joint)->parent_to_joint_origin_transform));
+      }
     }
   }
 
@@ -199,7 +214,21 @@ class ShapeCollector {
 
 std::vector<Shape> urdfCollisionShapes(const std::string& urdfXml, const std::string& link,
                                        MeshLoader& meshes, const std::string& meshBaseDirectory) {
+  if (urdfXml.size() > limits::kUrdfBytes) {
+    throw ConfigError("the URDF document has " + std::to_string(urdfXml.size()) +
+                      " bytes, more than the limit of " + std::to_string(limits::kUrdfBytes) +
+                      " bytes (" + std::to_string(limits::kUrdfBytes >> 20) + " MiB)");
+  }
+  // tinyxml2 recurses per element level (100,000 levels overflowed the stack).
+  if (xmlNestingDepth(urdfXml, limits::kXmlDepth) > limits::kXmlDepth) {
+    throw ConfigError("malformed URDF: XML elements nested more than " +
+                      std::to_string(limits::kXmlDepth) + " levels deep");
+  }
   const urdf::ModelInterfaceSharedPtr model = parse(urdfXml);
+  if (model->links_.size() > limits::kUrdfLinks) {
+    throw ConfigError("the URDF document has " + std::to_string(model->links_.size()) +
+                      " links, more than the limit of " + std::to_string(limits::kUrdfLinks));
+  }
   ShapeCollector collector(meshes, meshBaseDirectory);
   collector.setLinks(model->links_);
   if (link.empty()) {
@@ -208,27 +237,33 @@ std::vector<Shape> urdfCollisionShapes(const std::string& urdfXml, const std::st
     }
     collector.addTree(*model->getRoot(), Eigen::Isometry3d::Identity());
     if (collector.shapes().empty()) {
-      throw ConfigError("no collision geometry in robot '" + model->getName() + "' (" +
+      throw ConfigError("no collision geometry in robot " + quoteText(model->getName()) + " (" +
                         std::to_string(model->links_.size()) + " links)");
     }
   } else {
     const urdf::LinkConstSharedPtr l = model->getLink(link);
     if (!l) {
       std::string names;
+      std::size_t listed = 0;
       for (const auto& entry : model->links_) {
-        names += (names.empty() ? "" : ", ") + entry.first;
+        if (names.size() > 2000) {
+          names += ", ... (" + std::to_string(model->links_.size() - listed) + " more)";
+          break;
+        }
+        names += (names.empty() ? "" : ", ") + escapeText(entry.first);
+        ++listed;
       }
-      throw ConfigError("link '" + link + "' does not exist (links: " + names + ")");
+      throw ConfigError("link " + quoteText(link) + " does not exist (links: " + names + ")");
     }
     collector.addLink(*l, Eigen::Isometry3d::Identity());
     if (collector.shapes().empty()) {
-      throw ConfigError("link '" + link + "' has no collision geometry");
+      throw ConfigError("link " + quoteText(link) + " has no collision geometry");
     }
   }
   return std::move(collector.shapes());
 }
 
-std::string readTextFile(const std::string& path) {
+std::string readTextFile(const std::string& path, std::size_t maxBytes) {
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) {
@@ -237,16 +272,7 @@ std::string readTextFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(status)) {
     throw ConfigError("not a regular file");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw ConfigError("cannot open the file for reading");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) {
-    throw ConfigError("error while reading the file");
-  }
-  return text.str();
+  return readFileBounded(path, maxBytes, "the file");
 }
 
 }  // namespace placement_samplers

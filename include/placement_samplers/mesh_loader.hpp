@@ -7,6 +7,7 @@
 #include <string>
 #include <tuple>
 
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/shape.hpp"
 
 namespace placement_samplers {
@@ -29,18 +30,23 @@ std::string findPackageInRosPackagePath(const std::string& package);
 std::string resolveUri(const std::string& uri, const PackageResolver& resolver,
                        const std::string& baseDirectory);
 
-/// Reads a triangle mesh (STL, COLLADA, OBJ, or anything else assimp reads) into the mesh's
-/// own frame: node transforms and COLLADA units are applied, COLLADA's up axis is not (ROS
-/// and rviz keep z up), then every vertex is multiplied by @p scale.
+/// Reads a triangle mesh (STL, COLLADA or OBJ, by the file's extension, through assimp) into the
+/// mesh's own frame: node transforms and COLLADA units are applied, COLLADA's up axis is not
+/// (ROS and rviz keep z up), then every vertex is multiplied by @p scale.
+/// Refused before assimp sees them: files of more than limits::kMeshBytes, COLLADA documents
+/// nested more than limits::kXmlDepth elements deep, other formats.
 /// @param path a file path (see resolveUri)
 /// @param scale per-axis scale factors, finite and positive
 /// @param source how the mesh was named (its URI), kept in Mesh::source and used in messages
-/// @throw ConfigError naming @p source and the path: missing or unreadable file, a file assimp
-///        cannot parse, no triangles, non-finite vertices, or a bad scale
-Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale, const std::string& source);
+/// @param maxTriangles at most this many triangles (every instance of a mesh in the file counts)
+/// @throw ConfigError naming @p source and the path: missing, unreadable or too large file, an
+///        unsupported format, too deep nesting, a file assimp cannot parse, no triangles or too
+///        many, non-finite vertices, or a bad scale
+Mesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale, const std::string& source,
+                  std::size_t maxTriangles = limits::kMeshTriangles);
 
-/// Loads meshes by URI for one configuration build, each (file, scale) once.
-/// Not thread-safe: one loader per build.
+/// Loads meshes by URI for one configuration build, each (file, scale) once, all of them
+/// together within limits::kMeshTriangles triangles. Not thread-safe: one loader per build.
 class MeshLoader {
  public:
   /// @param resolver maps package names to directories; empty = findPackageInRosPackagePath
@@ -61,12 +67,15 @@ class MeshLoader {
   const std::string& baseDirectory() const { return baseDirectory_; }
   /// Number of distinct (file, scale) pairs read so far.
   std::size_t cachedCount() const { return cache_.size(); }
+  /// Triangles of the meshes read so far.
+  std::size_t triangleCount() const { return triangles_; }
 
  private:
   using Key = std::tuple<std::string, double, double, double>;
   PackageResolver resolver_;
   std::string baseDirectory_;
   std::map<Key, std::shared_ptr<const Mesh>> cache_;
+  std::size_t triangles_ = 0;
 };
 
 }  // namespace placement_samplers

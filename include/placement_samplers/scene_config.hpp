@@ -5,9 +5,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/object_model.hpp"
 #include "placement_samplers/sequential_composite_sampler.hpp"
 
@@ -42,14 +45,29 @@ struct SceneConfig {
   unsigned threads = 2;                       ///< service calls served at once
   std::uint32_t maxScenesPerRequest = 10000;  ///< larger num_scenes are refused
   double maxRequestSeconds = 10.0;            ///< a request stops after this long [s]
+  /// Requests with more fixtures are refused (SceneGenerator::prepare).
+  std::uint32_t maxFixturesPerRequest = limits::kDefaultFixturesPerRequest;
+  /// Requests whose scenes x placed objects exceed it are refused
+  /// (SceneGenerator::checkAnswerSize, called by sampleScenes).
+  std::uint64_t maxPlacementsPerRequest = limits::kDefaultPlacementsPerRequest;
   /// Frames on the latched /tf_static (they stay with every listener) instead of on /tf,
   /// re-sent at tfRate (frames of an older scene vanish).
   bool tfStatic = false;
   double tfRate = 10.0;  ///< how often the current scene's frames are sent on /tf [Hz]
 
-  /// The configured object called @p name, or nullptr.
-  const ObjectModel* findObject(const std::string& name) const;
-  ObjectPtr findObjectPtr(const std::string& name) const;
+  /// What the builder found suspicious but accepted (objects that nothing places, ...): the
+  /// CLI prints them on stderr, the node logs them as warnings.
+  std::vector<std::string> warnings;
+
+  /// The configured object called @p name, or nullptr. Constant time once indexObjects() ran
+  /// after the last change to @ref objects (the builder does), linear otherwise.
+  const ObjectModel* findObject(std::string_view name) const;
+  ObjectPtr findObjectPtr(std::string_view name) const;
+  /// Indexes @ref objects by name for findObject().
+  void indexObjects();
+
+ private:
+  std::unordered_map<std::string, std::size_t> objectIndex_;
 };
 
 /// Name of the root composite sampler.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "placement_samplers/placement_sampler.hpp"
@@ -11,6 +12,10 @@ class UniformRandomSampler;
 
 /// robosuite's SequentialCompositeSampler: sub-samplers run in order, each seeing what the
 /// earlier ones placed, so later objects can be placed on or around earlier ones.
+///
+/// A composite keeps the names of the samplers and objects added through it (appendSampler,
+/// addObjectsToSampler, hide), so that its checks take constant time whatever the size of the
+/// tree: build a nested composite completely before appending it.
 class SequentialCompositeSampler : public PlacementSampler {
  public:
   /// Name of the sampler that hide() creates.
@@ -53,6 +58,8 @@ class SequentialCompositeSampler : public PlacementSampler {
   void checkNotPresent(const std::vector<ObjectPtr>& objects) const;
 
   std::vector<Child> children_;
+  std::unordered_set<std::string> samplerNames_;  ///< this one's and those appended below it
+  std::unordered_set<std::string> objectNames_;   ///< objects of the samplers below it
 };
 
 }  // namespace placement_samplers

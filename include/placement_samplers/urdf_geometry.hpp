@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/mesh_loader.hpp"
 #include "placement_samplers/shape.hpp"
 
@@ -21,16 +22,20 @@ namespace placement_samplers {
 /// @param link a link name, or "" for the whole model
 /// @param meshes loads (and caches) the meshes
 /// @param meshBaseDirectory directory for relative mesh paths; "" = the loader's
+/// Refused before urdfdom parses them: documents of more than limits::kUrdfBytes bytes or
+/// nested more than limits::kXmlDepth elements deep; after parsing, more than
+/// limits::kUrdfLinks links. The link tree is walked without recursion.
 /// @throw ConfigError saying what is wrong (not prefixed with the object or file: the caller
-///        knows them): a malformed document (with urdfdom's reason), a link that does not exist,
+///        knows them): a limit exceeded, a malformed document (with urdfdom's reason), a link
+///        that does not exist,
 ///        no collision geometry, a missing, unreadable or empty mesh, non-finite or non-positive
 ///        sizes or scales, naming the link and the collision element
 std::vector<Shape> urdfCollisionShapes(const std::string& urdfXml, const std::string& link,
                                        MeshLoader& meshes,
                                        const std::string& meshBaseDirectory = "");
 
-/// Reads a whole text file (a URDF).
-/// @throw ConfigError when it does not exist or cannot be read
-std::string readTextFile(const std::string& path);
+/// Reads a whole text file (a URDF), a regular file of at most @p maxBytes bytes.
+/// @throw ConfigError when it does not exist, is not a regular file, cannot be read or is larger
+std::string readTextFile(const std::string& path, std::size_t maxBytes = limits::kUrdfBytes);
 
 }  // namespace placement_samplers

@@ -1,12 +1,17 @@
 #include "placement_samplers/ros/param_reader.hpp"
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {
 namespace {
 
-void convert(XmlRpc::XmlRpcValue& in, ConfigNode& out) {
+/// Recursive, so bounded: a tree nested deeper than the builder accepts is refused here.
+void convert(XmlRpc::XmlRpcValue& in, ConfigNode& out, int depth) {
+  if (depth > limits::kConfigDepth) {
+    out.fail("nested too deep (more than " + std::to_string(limits::kConfigDepth) + " levels)");
+  }
   switch (in.getType()) {
     case XmlRpc::XmlRpcValue::TypeBoolean:
       out.setBool(static_cast<bool>(in));
@@ -23,13 +28,13 @@ void convert(XmlRpc::XmlRpcValue& in, ConfigNode& out) {
     case XmlRpc::XmlRpcValue::TypeArray:
       out.setList();
       for (int i = 0; i < in.size(); ++i) {
-        convert(in[i], out.append());
+        convert(in[i], out.append(), depth + 1);
       }
       return;
     case XmlRpc::XmlRpcValue::TypeStruct:
       out.setMap();
       for (auto& entry : in) {
-        convert(entry.second, out.add(entry.first));
+        convert(entry.second, out.add(entry.first), depth + 1);
       }
       return;
     case XmlRpc::XmlRpcValue::TypeInvalid:
@@ -44,7 +49,7 @@ void convert(XmlRpc::XmlRpcValue& in, ConfigNode& out) {
 
 ConfigNode toConfigNode(XmlRpc::XmlRpcValue& value, const std::string& path) {
   ConfigNode root = ConfigNode::makeRoot(path, '/');
-  convert(value, root);
+  convert(value, root, 1);
   return root;
 }
 

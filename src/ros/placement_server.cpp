@@ -7,6 +7,7 @@
 
 #include "placement_samplers/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/malloc_tuning.hpp"
 #include "placement_samplers/random.hpp"
 #include "placement_samplers/ros/conversions.hpp"
 #include "placement_samplers/ros/param_reader.hpp"
@@ -89,6 +90,9 @@ void PlacementServer::start(const ros::WallDuration& masterPeriod) {
     std::lock_guard<std::mutex> lock(publishMutex_);
     tfStatic_ = config.tfStatic;
     tfRate_ = config.tfRate;
+  }
+  for (const std::string& warning : config.warnings) {
+    ROS_WARN_STREAM("placement_server: " << warning);
   }
   advertise();
   lightSpinner_ = std::make_unique<ros::AsyncSpinner>(1, &lightQueue_);
@@ -188,11 +192,19 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     SampleRequest sampleRequest = toSampleRequest(request);
     sampleRequest.maxSeconds = config.maxRequestSeconds;
     PreparedRequest prepared = generator->prepare(sampleRequest);
+    generator->checkAnswerSize(prepared, count);  // refused before any scene is sampled
+    const std::uint64_t placements = count * generator->placementsPerScene(prepared);
     const std::uint64_t seed = request.seed != 0 ? request.seed : nextSeed();
     response.seed = seed;
     // Threads pay off only for large batches; the answer is the same either way.
     const unsigned threads = count >= 256 ? 0 : 1;
     std::vector<SceneResult> scenes = generator->sampleScenes(prepared, seed, count, threads);
+    if (placements >= kTrimAfterPlacements) {
+      // roscpp frees the answer after this callback: the publishing thread trims a little later.
+      std::lock_guard<std::mutex> lock(pendingMutex_);
+      trimPlacements_ = std::max(trimPlacements_, placements);
+      trimAt_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+    }
 
     response.success = true;
     std::size_t failed = 0;
@@ -286,7 +298,15 @@ void PlacementServer::publishLoop() {
     pending_.reset();
     const bool clear = clearPending_;
     clearPending_ = false;
+    std::uint64_t trim = 0;
+    if (trimPlacements_ > 0 && Clock::now() >= trimAt_) {
+      trim = trimPlacements_;
+      trimPlacements_ = 0;
+    }
     lock.unlock();
+    if (trim > 0) {
+      trimAfterBatch(trim);
+    }
 
     std::optional<Shown> rendered;
     if (next) {
@@ -348,6 +368,10 @@ bool PlacementServer::reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Res
     response.success = true;
     response.message = "configuration reloaded: " + std::to_string(config.objects.size()) +
                        " objects, " + std::to_string(config.fixtures.size()) + " fixtures";
+    for (const std::string& warning : config.warnings) {
+      response.message += "; warning: " + warning;
+      ROS_WARN_STREAM("placement_server: " << warning);
+    }
     if (config.threads != threads_) {
       response.message += "; threads " + std::to_string(config.threads) +
                           " takes effect when the node restarts (serving with " +

@@ -53,7 +53,8 @@ const UniformRandomSampler& uniformNamed(const SceneConfig& config, const std::s
 }
 
 TEST(ConfigBuilder, EmptyConfigurationGivesDefaults) {
-  const auto config = buildFromYaml("");
+  // An empty tree (an empty file is refused by the reader, as an empty namespace by the node).
+  const auto config = buildSceneConfig(ConfigNode::makeRoot());
   EXPECT_EQ(config->frameId, "world");
   EXPECT_FALSE(config->tfPrefix.has_value());  // the node uses its own name
   EXPECT_EQ(config->seed, 0u);
@@ -297,7 +298,8 @@ TEST(ConfigBuilder, UnknownKeysNameThePath) {
   EXPECT_EQ(buildError("sed: 3\n"),
             "configuration: unknown key 'sed' (expected one of: frame_id, tf_prefix, seed, "
             "collision_check, collision_margin, max_attempts, objects, fixtures, samplers, hide, "
-            "threads, max_scenes_per_request, max_request_seconds, tf_static, tf_rate)");
+            "threads, max_scenes_per_request, max_request_seconds, max_fixtures_per_request, "
+            "max_placements_per_request, tf_static, tf_rate)");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, x_rnage: [0, 1]}\n"),
             "samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, x_range, "
             "y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
@@ -490,15 +492,25 @@ TEST(ConfigBuilder, TopLevelValueErrors) {
 }
 
 TEST(ConfigBuilder, ServiceSettings) {
-  const auto defaults = buildFromYaml("");
+  const auto defaults = buildSceneConfig(ConfigNode::makeRoot());
   EXPECT_EQ(defaults->threads, 2u);
   EXPECT_EQ(defaults->maxScenesPerRequest, 10000u);
   EXPECT_EQ(defaults->maxRequestSeconds, 10.0);
-  const auto config =
-      buildFromYaml("threads: 4\nmax_scenes_per_request: 50\nmax_request_seconds: 2\n");
+  EXPECT_EQ(defaults->maxFixturesPerRequest, 1000u);
+  EXPECT_EQ(defaults->maxPlacementsPerRequest, 1000000u);
+  const auto config = buildFromYaml(
+      "threads: 4\nmax_scenes_per_request: 50\nmax_request_seconds: 2\n"
+      "max_fixtures_per_request: 0\nmax_placements_per_request: 7\n");
   EXPECT_EQ(config->threads, 4u);
   EXPECT_EQ(config->maxScenesPerRequest, 50u);
   EXPECT_EQ(config->maxRequestSeconds, 2.0);
+  EXPECT_EQ(config->maxFixturesPerRequest, 0u);
+  EXPECT_EQ(config->maxPlacementsPerRequest, 7u);
+  EXPECT_EQ(buildError("max_fixtures_per_request: -1\n"),
+            "max_fixtures_per_request: expected an integer in [0, 1000000], got an integer (-1)");
+  EXPECT_EQ(
+      buildError("max_placements_per_request: 0\n"),
+      "max_placements_per_request: expected an integer in [1, 1000000000], got an integer (0)");
   EXPECT_EQ(buildError("threads: 0\n"),
             "threads: expected an integer in [1, 64], got an integer (0)");
   EXPECT_EQ(buildError("max_scenes_per_request: 0\n"),
@@ -672,7 +684,8 @@ TEST(ConfigBuilder, MissingFile) {
     loadYamlFile("/nonexistent/scene.yaml");
     FAIL() << "no ConfigError";
   } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()), "/nonexistent/scene.yaml: cannot read the configuration file");
+    EXPECT_EQ(std::string(e.what()),
+              "/nonexistent/scene.yaml: cannot read the configuration file: file not found");
   }
 }
 

@@ -218,7 +218,8 @@ TEST(SampleScenesCli, MissingConfigFileExitsTwo) {
   const CliRun r = run({"--config", path});
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(r.out.empty());
-  EXPECT_EQ(r.err, "sample_scenes: " + path + ": cannot read the configuration file\n");
+  EXPECT_EQ(r.err,
+            "sample_scenes: " + path + ": cannot read the configuration file: file not found\n");
 }
 
 TEST(SampleScenesCli, BadConfigExitsTwoNamingTheFile) {

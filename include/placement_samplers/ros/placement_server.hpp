@@ -5,6 +5,7 @@
 #include <std_srvs/Empty.h>
 #include <std_srvs/Trigger.h>
 
+#include <chrono>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -107,6 +108,9 @@ class PlacementServer {
   std::condition_variable pendingReady_;
   std::optional<ShownScene> pending_;
   bool clearPending_ = false;
+  // Freed memory of a large answer is returned to the kernel once roscpp has sent and freed it.
+  std::uint64_t trimPlacements_ = 0;
+  std::chrono::steady_clock::time_point trimAt_;
   bool stopping_ = false;
   std::thread publisher_;
   std::thread watcher_;

@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace placement_samplers {
+
+/// @p text made safe to print in a message: control characters (a NUL byte included), DEL,
+/// backslashes and bytes that are not valid UTF-8 become escapes (\n, \t, \r, \0, \\, \xNN);
+/// valid UTF-8 is kept. Beyond @p maxShown bytes the text is cut and "... (N bytes)" appended.
+/// Every message that shows a name, key, value or path taken from input uses it (or quoteText()),
+/// so a NUL byte cannot cut a message and a terminal escape cannot reach a console.
+std::string escapeText(std::string_view text, std::size_t maxShown = 1000);
+
+/// escapeText(@p text) between single quotes: 'name'.
+std::string quoteText(std::string_view text);
+
+}  // namespace placement_samplers
