@@ -59,7 +59,8 @@ class SceneGenerator {
   /// @throw RequestError saying what is wrong
   PreparedRequest prepare(const SampleRequest& request) const;
 
-  /// Scene @p index of a request seeded with @p seed; the same whatever else is sampled.
+  /// Scene @p index of a request seeded with @p seed; the same whatever else is sampled: what
+  /// robosuite's samplers give with numpy.random.default_rng([seed, index]) (README).
   SceneResult sampleScene(const PreparedRequest& request, std::uint64_t seed,
                           std::uint64_t index) const;
 
@@ -70,7 +71,9 @@ class SceneGenerator {
                                         std::uint64_t count, unsigned threads = 1) const;
 
   /// Scenes @p first .. first + count - 1 of the same numbering: a long request taken in
-  /// blocks gives the scenes sampleScenes() would. The time limit starts with each call.
+  /// blocks gives the scenes sampleScenes() would, and so do processes that each take a piece
+  /// (sharding). The time limit starts with each call.
+  /// @throw RequestError when @p first + @p count exceeds 2^64 - 1 (scene indices are uint64)
   std::vector<SceneResult> sampleSceneRange(const PreparedRequest& request, std::uint64_t seed,
                                             std::uint64_t first, std::uint64_t count,
                                             unsigned threads = 1) const;
