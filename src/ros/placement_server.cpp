@@ -192,7 +192,8 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     response.seed = seed;
     // Threads pay off only for large batches; the answer is the same either way.
     const unsigned threads = count >= 256 ? 0 : 1;
-    std::vector<SceneResult> scenes = generator->sampleScenes(prepared, seed, count, threads);
+    std::vector<SceneResult> scenes =
+        generator->sampleSceneRange(prepared, seed, request.first_scene, count, threads);
 
     response.success = true;
     std::size_t failed = 0;
