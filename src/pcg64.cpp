@@ -23,6 +23,31 @@ inline std::uint32_t hashMix(std::uint32_t value, std::uint32_t& hashConst) {
   return value ^ (value >> kXShift);
 }
 
+/// The running constants, init * mult^k for k = 0 .. N - 1, known at compile time: the scene
+/// path then has no serial chain of constant multiplications (seeding is per scene).
+template <std::size_t N>
+constexpr std::array<std::uint32_t, N> powers(std::uint32_t init, std::uint32_t mult) {
+  std::array<std::uint32_t, N> out{};
+  out[0] = init;
+  for (std::size_t k = 1; k < N; ++k) {
+    out[k] = out[k - 1] * mult;
+  }
+  return out;
+}
+
+// mixEntropy's first 4 + 12 hashmix calls; generate_state's first 8 words (PCG64's seed).
+constexpr std::size_t kPoolHashes = SeedSequence::kPoolSize * SeedSequence::kPoolSize;
+constexpr std::array<std::uint32_t, kPoolHashes + 1> kHashA =
+    powers<kPoolHashes + 1>(kInitA, kMultA);
+constexpr std::array<std::uint32_t, 9> kHashB = powers<9>(kInitB, kMultB);
+
+/// hashmix call @p k of mix_entropy.
+inline std::uint32_t hashMixAt(std::uint32_t value, std::size_t k) {
+  value ^= kHashA[k];
+  value *= kHashA[k + 1];
+  return value ^ (value >> kXShift);
+}
+
 inline std::uint32_t mix(std::uint32_t x, std::uint32_t y) {
   const std::uint32_t result = kMixMultL * x - kMixMultR * y;
   return result ^ (result >> kXShift);
@@ -73,19 +98,20 @@ SeedSequence SeedSequence::ofPair(std::uint64_t seed, std::uint64_t index) {
 }
 
 void SeedSequence::mixEntropy(const std::uint32_t* words, std::size_t count) {
-  std::uint32_t hashConst = kInitA;
+  std::size_t k = 0;  // hashmix calls so far
   for (std::size_t i = 0; i < kPoolSize; ++i) {
-    pool_[i] = hashMix(i < count ? words[i] : 0u, hashConst);
+    pool_[i] = hashMixAt(i < count ? words[i] : 0u, k++);
   }
   // Every word into every other, so that late words affect early ones.
   for (std::size_t source = 0; source < kPoolSize; ++source) {
     for (std::size_t target = 0; target < kPoolSize; ++target) {
       if (source != target) {
-        pool_[target] = mix(pool_[target], hashMix(pool_[source], hashConst));
+        pool_[target] = mix(pool_[target], hashMixAt(pool_[source], k++));
       }
     }
   }
   // Words beyond the pool are mixed into each pool word in turn.
+  std::uint32_t hashConst = kHashA[kPoolHashes];
   for (std::size_t source = kPoolSize; source < count; ++source) {
     for (std::size_t target = 0; target < kPoolSize; ++target) {
       pool_[target] = mix(pool_[target], hashMix(words[source], hashConst));
@@ -104,6 +130,16 @@ void SeedSequence::generateState(std::uint32_t* out, std::size_t count) const {
 }
 
 void SeedSequence::generateState64(std::uint64_t* out, std::size_t count) const {
+  if (count == 4) {  // PCG64's seed: constants from the table, the eight words side by side
+    for (std::size_t i = 0; i < 8; i += 2) {
+      std::uint32_t low = (pool_[i % kPoolSize] ^ kHashB[i]) * kHashB[i + 1];
+      std::uint32_t high = (pool_[(i + 1) % kPoolSize] ^ kHashB[i + 1]) * kHashB[i + 2];
+      low ^= low >> kXShift;
+      high ^= high >> kXShift;
+      out[i / 2] = low | (std::uint64_t{high} << 32);
+    }
+    return;
+  }
   std::uint32_t hashConst = kInitB;
   for (std::size_t i = 0; i < count; ++i) {
     std::uint64_t halves[2];
