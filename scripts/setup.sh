@@ -18,7 +18,7 @@ PS_PACKAGES=(
   libtf2-dev libtf2-ros-dev libtf2-eigen-dev python3-tf2-ros tf2-tools
   liburdf-dev liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev
   libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
-  librostest-dev python3-rostest python3-rospy python3-nose libgtest-dev libbenchmark-dev
+  librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev libbenchmark-dev
   libyaml-cpp-dev zlib1g-dev catkin-lint
 )
 

@@ -1,19 +1,13 @@
 #include "placement_samplers/random.hpp"
 
+#include <random>
+
 namespace placement_samplers {
-namespace {
 
-std::uint64_t splitMix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-}  // namespace
-
-std::uint64_t sceneSeed(std::uint64_t requestSeed, std::uint64_t index) {
-  return splitMix64(splitMix64(requestSeed) ^ index);
+Engine hiddenEngine(std::uint64_t seed, std::uint64_t index) {
+  const std::uint64_t entropy[2] = {seed, index};
+  const std::uint64_t spawnKey[1] = {0};
+  return Engine(SeedSequence(entropy, 2, spawnKey, 1));
 }
 
 std::uint64_t randomSeed() {

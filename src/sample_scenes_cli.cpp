@@ -20,12 +20,16 @@ namespace placement_samplers {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: sample_scenes --config FILE [--seed S] [--scenes K] [--sampler NAME]\n"
-    "                     [--collision-check radius|fcl|radius_and_fcl] [--max-attempts N]\n"
-    "                     [--threads T]\n"
-    "Samples K scenes (default 1) from the YAML configuration FILE and prints one JSON object\n"
-    "per scene and line. S defaults to the configuration's seed (0 = random); scene i of seed S\n"
-    "is the same whatever K and T are. T = 0 (default) uses every core.\n"
+    "usage: sample_scenes --config FILE [--seed S] [--scenes K] [--first-scene N]\n"
+    "                     [--sampler NAME] [--collision-check radius|fcl|radius_and_fcl]\n"
+    "                     [--max-attempts N] [--threads T]\n"
+    "       sample_scenes --config FILE --describe\n"
+    "Samples scenes N .. N+K-1 (default N = 0, K = 1) from the YAML configuration FILE and\n"
+    "prints one JSON object per scene and line. S defaults to the configuration's seed (0 =\n"
+    "random); scene i of seed S is the same whatever N, K and T are (numpy's\n"
+    "default_rng([S, i])), so processes given pieces of N .. N+K-1 together print the scenes\n"
+    "of one process. T = 0 (default) uses every core. --describe prints the built\n"
+    "configuration as JSON instead (derived radii and offsets, the sampler tree).\n"
     "Exit status: 0 all scenes placed, 1 some scene failed, 2 usage or configuration error.\n";
 
 struct UsageError : std::runtime_error {
@@ -52,10 +56,12 @@ constexpr std::uint64_t kBlock = 8192;
 /// Placements per block, at most (unless one scene has more): about 70 MB of results and text.
 constexpr std::uint64_t kBlockPlacements = 1 << 20;
 
-/// Samples and prints scenes 0 .. count - 1 in blocks; formatting is spread over the threads
-/// too, since printing a scene costs more than sampling it. @return true when all succeeded.
+/// Samples and prints scenes firstScene .. firstScene + count - 1 in blocks; formatting is spread
+/// over the threads too, since printing a scene costs more than sampling it. @return true when all
+/// succeeded.
 bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
-                 std::uint64_t seed, std::uint64_t count, unsigned threads, std::ostream& out) {
+                 std::uint64_t seed, std::uint64_t firstScene, std::uint64_t count,
+                 unsigned threads, std::ostream& out) {
   const unsigned workers =
       threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::string> texts(workers);
@@ -65,7 +71,7 @@ bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepare
   for (std::uint64_t first = 0; first < count; first += block) {
     const std::uint64_t n = std::min(block, count - first);
     const std::vector<SceneResult> results =
-        generator.sampleSceneRange(prepared, seed, first, n, threads);
+        generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads);
     const std::size_t slices = static_cast<std::size_t>(std::min<std::uint64_t>(workers, n));
     auto format = [&](std::size_t slice) {
       // A string of this thread's own (texts' buffers are kept): neighbouring std::string
@@ -105,8 +111,10 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
   bool haveSeed = false;
   std::uint64_t seed = 0;
   std::uint64_t scenes = 1;
+  std::uint64_t firstScene = 0;
   std::uint32_t maxAttempts = 0;
   unsigned threads = 0;
+  bool describe = false;
   try {
     for (std::size_t i = 0; i < args.size(); ++i) {
       const std::string& flag = args[i];
@@ -114,10 +122,15 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
         out << kUsage;
         return 0;
       }
+      if (flag == "--describe") {
+        describe = true;
+        continue;
+      }
       if (i + 1 >= args.size()) {
         throw UsageError(flag == "--config" || flag == "--seed" || flag == "--scenes" ||
-                                 flag == "--sampler" || flag == "--collision-check" ||
-                                 flag == "--max-attempts" || flag == "--threads"
+                                 flag == "--first-scene" || flag == "--sampler" ||
+                                 flag == "--collision-check" || flag == "--max-attempts" ||
+                                 flag == "--threads"
                              ? flag + ": missing value"
                              : "unknown argument " + quoteText(flag));
       }
@@ -129,6 +142,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
         seed = parseUnsigned(flag, value, std::numeric_limits<std::uint64_t>::max());
       } else if (flag == "--scenes") {
         scenes = parseUnsigned(flag, value, 100000000);
+      } else if (flag == "--first-scene") {
+        firstScene = parseUnsigned(flag, value, std::numeric_limits<std::uint64_t>::max());
       } else if (flag == "--sampler") {
         sampler = value;
       } else if (flag == "--collision-check") {
@@ -168,6 +183,10 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     for (const std::string& warning : generator.config().warnings) {
       err << "sample_scenes: " << shownPath << ": warning: " << warning << "\n";
     }
+    if (describe) {
+      out << configToJson(generator.config()) << "\n";
+      return 0;
+    }
     SampleRequest request;
     request.sampler = sampler;
     request.maxAttempts = maxAttempts;
@@ -184,9 +203,17 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     }
     const PreparedRequest prepared = generator.prepare(request);
     if (!haveSeed) {
-      seed = generator.config().seed != 0 ? generator.config().seed : randomSeed();
+      seed = generator.config().seed;
     }
-    return writeScenes(generator, prepared, seed, scenes, threads, out) ? 0 : 1;
+    if (seed == 0) {
+      seed = randomSeed();  // a fresh seed, printed with every scene
+    }
+    if (scenes > 0 && scenes - 1 > std::numeric_limits<std::uint64_t>::max() - firstScene) {
+      err << "sample_scenes: --first-scene " << firstScene << " with --scenes " << scenes
+          << ": scene indices must stay below 2^64\n";
+      return 2;
+    }
+    return writeScenes(generator, prepared, seed, firstScene, scenes, threads, out) ? 0 : 1;
   } catch (const ConfigError& e) {
     err << "sample_scenes: " << shownPath << ": " << e.what() << "\n";
   } catch (const RequestError& e) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string_view>
@@ -32,44 +33,12 @@ class SceneGenerator::Worker {
   }
   bool expired() const { return context_.expired(); }
 
-  /// Scene @p index with the worker's engine seeded for it.
+  /// Scene @p index of request seed @p seed: numpy's default_rng([seed, index]).
   SceneResult run(std::uint64_t seed, std::uint64_t index) {
-    engine_.seed(sceneSeed(seed, index));
-    context_.setEngine(engine_);
+    engine_ = sceneEngine(seed, index);
+    context_.setScene(seed, index);
     return sample(seed, index);
   }
-
-  /// Scenes first .. first + count - 1 (count <= kBatch) into @p results, their engines
-  /// seeded together.
-  void runBatch(std::uint64_t seed, std::uint64_t first, std::size_t count, SceneResult* results) {
-    if (count == 1 && !expired()) {
-      results[0] = run(seed, first);  // nothing to seed alongside
-      return;
-    }
-    if (batchEngines_.empty()) {
-      batchEngines_.resize(kBatch);  // 40 kB of state: only for requests of several scenes
-    }
-    std::uint64_t seeds[kBatch];
-    Engine* engines[kBatch];
-    for (std::size_t k = 0; k < count; ++k) {
-      seeds[k] = sceneSeed(seed, first + k);
-      engines[k] = &batchEngines_[k];
-    }
-    Engine::seedMany(engines, seeds, count);
-    for (std::size_t k = 0; k < count; ++k) {
-      if (expired()) {
-        results[k].seed = seed;
-        results[k].index = first + k;
-        results[k].message = "not sampled: the request ran out of time";
-        continue;
-      }
-      context_.setEngine(batchEngines_[k]);
-      results[k] = sample(seed, first + k);
-    }
-  }
-
-  /// Scenes seeded together by runBatch().
-  static constexpr std::size_t kBatch = 16;
 
  private:
   SceneResult sample(std::uint64_t seed, std::uint64_t index) {
@@ -100,7 +69,6 @@ class SceneGenerator::Worker {
 
   const PreparedRequest& request_;
   Engine engine_;
-  std::vector<Engine> batchEngines_;
   std::unique_ptr<CollisionChecker> checker_;
   SampleContext context_;
   std::size_t objects_;  ///< objects the sampler places
@@ -333,6 +301,10 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
                                                           std::uint64_t seed, std::uint64_t first,
                                                           std::uint64_t count,
                                                           unsigned threads) const {
+  if (count > 0 && count - 1 > std::numeric_limits<std::uint64_t>::max() - first) {
+    throw RequestError("first scene " + std::to_string(first) + " + " + std::to_string(count) +
+                       " scenes: scene indices must stay below 2^64");
+  }
   std::vector<SceneResult> results(count);
   if (threads == 0) {
     threads = std::max(1u, std::thread::hardware_concurrency());
@@ -349,9 +321,14 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
     for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
          begin = next.fetch_add(kChunk)) {
       const std::uint64_t end = std::min(count, begin + kChunk);
-      for (std::uint64_t i = begin; i < end; i += Worker::kBatch) {
-        const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(Worker::kBatch, end - i));
-        worker.runBatch(seed, first + i, n, &results[i]);
+      for (std::uint64_t i = begin; i < end; ++i) {
+        if (worker.expired()) {
+          results[i].seed = seed;
+          results[i].index = first + i;
+          results[i].message = "not sampled: the request ran out of time";
+          continue;
+        }
+        results[i] = worker.run(seed, first + i);
       }
     }
   };

@@ -13,12 +13,6 @@
 namespace placement_samplers {
 namespace {
 
-/// uniform(engine, low, high), without a draw when the interval is a point: uniform then gives
-/// low + 0.0 (which turns -0.0 into 0.0), so the value is the same and the draw is saved.
-inline double uniformOrPoint(Engine& engine, double low, double high) {
-  return low == high ? low + 0.0 : uniform(engine, low, high);
-}
-
 std::string rangeText(const Eigen::Vector2d& r) {
   std::ostringstream out;
   out << "[" << r[0] << ", " << r[1] << "]";
@@ -160,7 +154,7 @@ Eigen::Quaterniond UniformRandomSampler::sampleOrientation(Engine& engine,
   if (params_.rotation.kind == RotationSpec::Kind::Full) {
     angle = uniform(engine, 0.0, 2.0 * M_PI);
   } else if (params_.rotation.kind == RotationSpec::Kind::Range) {
-    angle = uniformOrPoint(engine, params_.rotation.low, params_.rotation.high);
+    angle = uniform(engine, params_.rotation.low, params_.rotation.high);  // draws when low == high
   }
   // A world-axis rotation applied after the initial orientation; Eigen's AngleAxis conversion,
   // with our sinCos.
@@ -203,7 +197,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
 bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
                                     const Eigen::Vector3d& base, bool onTop) const {
   const ObjectModel& object = *entry.object;
-  Engine& engine = context.engine();
+  // robosuite's draws: per attempt x then y, one rotation draw after the accepted attempt
+  // (the fcl modes draw it per attempt, before their test, which needs it).
+  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
   const std::uint32_t limit =
       context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
   const bool check = params_.ensureValidPlacement;
@@ -225,8 +221,8 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
       context.fail(std::move(failure));
       return false;
     }
-    candidate.position.x() = uniformOrPoint(engine, entry.x[0], entry.x[1]) + base.x();
-    candidate.position.y() = uniformOrPoint(engine, entry.y[0], entry.y[1]) + base.y();
+    candidate.position.x() = uniform(engine, entry.x[0], entry.x[1]) + base.x();
+    candidate.position.y() = uniform(engine, entry.y[0], entry.y[1]) + base.y();
     if (orientFirst) {
       candidate.orientation = sampleOrientation(engine, object);
     }

@@ -1,31 +1,35 @@
 #pragma once
 
 #include <cstdint>
-#include <random>
 
-#include "placement_samplers/mt19937_64.hpp"
+#include "placement_samplers/pcg64.hpp"
 
 namespace placement_samplers {
 
-/// The one random engine type of the library. Every scene owns one, seeded from (seed, index).
-/// It gives the same numbers as std::mt19937_64 for every seed (verified against it by
-/// test/unit/mt19937_64_test.cpp), so a seed gives the same scenes as with std::mt19937_64; it
-/// is our own because seeding std::mt19937_64 and drawing once costs about 1.7 us, most of a
-/// small scene, where Mt19937_64 computes only the state its first draws need.
-using Engine = Mt19937_64;
+/// The one random engine type of the library: numpy's PCG64. Scene i of request seed S draws
+/// from sceneEngine(S, i), the generator of `numpy.random.default_rng([S, i])`, so robosuite's
+/// samplers given that generator draw the same numbers (README, "robosuite semantics").
+using Engine = Pcg64;
 
-/// A double in [0, 1) from the top 53 bits of one draw. Written out rather than taken from
-/// std::uniform_real_distribution so that a seed gives the same scene with any standard library.
+/// A double in [0, 1) from the top 53 bits of one draw: numpy's next_double.
 inline double uniform01(Engine& engine) { return static_cast<double>(engine() >> 11) * 0x1.0p-53; }
 
-/// A double in [low, high) (exactly low when low == high), from one draw.
+/// A double in [low, high) (low when low == high), from one draw: numpy's
+/// Generator.uniform(low, high), `low + (high - low) * next_double`.
 inline double uniform(Engine& engine, double low, double high) {
   return low + (high - low) * uniform01(engine);
 }
 
-/// The seed of scene @p index of a request with seed @p requestSeed: scene i is the same scene
-/// whatever the number of scenes or threads. A SplitMix64 mix of both values.
-std::uint64_t sceneSeed(std::uint64_t requestSeed, std::uint64_t index);
+/// The engine of scene @p index of a request with seed @p seed: numpy's
+/// default_rng([seed, index]). Scene i is the same whatever the number of scenes or threads.
+inline Engine sceneEngine(std::uint64_t seed, std::uint64_t index) {
+  return Engine::forScene(seed, index);
+}
+
+/// The engine of the hidden objects of that scene, a stream apart from the scene's (robosuite's
+/// hide sampler has a generator of its own): numpy's
+/// default_rng(SeedSequence([seed, index]).spawn(1)[0]).
+Engine hiddenEngine(std::uint64_t seed, std::uint64_t index);
 
 /// A non-zero seed from std::random_device, for requests and configurations that give seed 0.
 std::uint64_t randomSeed();

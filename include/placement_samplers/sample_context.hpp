@@ -55,9 +55,27 @@ class SampleContext {
   }
   bool expired() const { return deadline_ && std::chrono::steady_clock::now() > *deadline_; }
 
+  /// The scene's stream: every draw of the samplers, hidden objects excepted.
   Engine& engine() { return *engine_; }
-  /// Draws from @p engine from now on (a batch seeds several engines at once).
+  /// Draws from @p engine from now on.
   void setEngine(Engine& engine) { engine_ = &engine; }
+  /// Makes this scene @p index of request seed @p seed for hiddenEngine() (the scene's own
+  /// engine is the caller's: setEngine()).
+  void setScene(std::uint64_t seed, std::uint64_t index) {
+    seed_ = seed;
+    index_ = index;
+    hiddenSeeded_ = false;
+  }
+  /// The hidden objects' stream (random.hpp's hiddenEngine(seed, index)), seeded on first use:
+  /// hidden objects draw nothing from engine(), as robosuite's hide sampler has a generator of
+  /// its own.
+  Engine& hiddenEngine() {
+    if (!hiddenSeeded_) {
+      hiddenEngine_ = placement_samplers::hiddenEngine(seed_, index_);
+      hiddenSeeded_ = true;
+    }
+    return hiddenEngine_;
+  }
   std::uint32_t maxAttempts() const { return maxAttempts_; }
   const std::vector<PlacedEntry>& entries() const { return entries_; }
   const std::vector<ObjectPlacement>& placements() const { return placements_; }
@@ -66,6 +84,10 @@ class SampleContext {
 
  private:
   Engine* engine_;
+  Engine hiddenEngine_;
+  std::uint64_t seed_ = 0;
+  std::uint64_t index_ = 0;
+  bool hiddenSeeded_ = false;
   CollisionChecker& checker_;
   std::uint32_t maxAttempts_;
   std::vector<PlacedEntry> entries_;

@@ -78,7 +78,8 @@ class SceneGenerator {
   /// @throw RequestError with the numbers and the largest number of scenes allowed
   void checkAnswerSize(const PreparedRequest& request, std::uint64_t numScenes) const;
 
-  /// Scene @p index of a request seeded with @p seed; the same whatever else is sampled.
+  /// Scene @p index of a request seeded with @p seed; the same whatever else is sampled: what
+  /// robosuite's samplers give with numpy.random.default_rng([seed, index]) (README).
   SceneResult sampleScene(const PreparedRequest& request, std::uint64_t seed,
                           std::uint64_t index) const;
 
@@ -90,8 +91,10 @@ class SceneGenerator {
                                         std::uint64_t count, unsigned threads = 1) const;
 
   /// Scenes @p first .. first + count - 1 of the same numbering: a long request taken in
-  /// blocks gives the scenes sampleScenes() would (the CLI writes its output so; no answer
-  /// size limit here). The time limit counts from prepare().
+  /// blocks gives the scenes sampleScenes() would, and so do processes that each take a piece
+  /// (sharding; the CLI writes its output so; no answer size limit here). The time limit counts
+  /// from prepare().
+  /// @throw RequestError when @p first + @p count exceeds 2^64 - 1 (scene indices are uint64)
   std::vector<SceneResult> sampleSceneRange(const PreparedRequest& request, std::uint64_t seed,
                                             std::uint64_t first, std::uint64_t count,
                                             unsigned threads = 1) const;

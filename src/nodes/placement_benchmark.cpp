@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -134,7 +135,7 @@ class SceneLoop {
 
   /// Scenes with one engine seeded once: the cost of sampling alone [ns/scene].
   void runReused(std::uint64_t n) {
-    engine_.seed(kSeed);
+    engine_ = ps::Engine(kSeed);
     double sum = 0.0;
     for (std::uint64_t i = 0; i < n; ++i) {
       scene();
@@ -147,11 +148,17 @@ class SceneLoop {
   void runSeeded(std::uint64_t n) {
     double sum = 0.0;
     for (std::uint64_t i = 0; i < n; ++i) {
-      engine_.seed(ps::sceneSeed(kSeed, i));
+      seedScene(i);
       scene();
       sum += lastX();
     }
     gSink = gSink + sum;
+  }
+
+  /// Scene @p i of kSeed: numpy's default_rng([kSeed, i]), as SceneGenerator does.
+  void seedScene(std::uint64_t i) {
+    engine_ = ps::sceneEngine(kSeed, i);
+    context_.setScene(kSeed, i);
   }
 
   const ps::SampleContext& context() const { return context_; }
@@ -184,7 +191,7 @@ struct SceneStats {
 SceneStats collectStats(SceneLoop& loop, std::uint64_t scenes) {
   SceneStats stats;
   for (std::uint64_t i = 0; i < scenes; ++i) {
-    loop.engine().seed(ps::sceneSeed(kSeed, i));
+    loop.seedScene(i);
     const bool ok = loop.scene();
     ++stats.scenes;
     for (const ps::ObjectPlacement& p : loop.context().placements()) {
@@ -322,38 +329,40 @@ class Xoshiro256 {
   std::uint64_t state_[4] = {1, 2, 3, 4};
 };
 
-/// seed(sceneSeed(kSeed, i)) and one draw per operation, for engine type @p E.
+/// seed(kSeed + i) and one draw per operation, for engine type @p E.
 template <class E>
 double seedAndDrawNs(const Options& options) {
   E engine;
   return nsPerOp(options, [&](std::uint64_t n) {
     std::uint64_t sum = 0;
     for (std::uint64_t i = 0; i < n; ++i) {
-      engine.seed(ps::sceneSeed(kSeed, i));
+      engine.seed(kSeed + i);
       sum += engine();
     }
     gSink = gSink + static_cast<double>(sum);
   });
 }
 
-/// The building blocks of a scene's cost: seeding the engine per scene (seed() plus the first
-/// draw, which regenerates all 312 words of state), a draw from a running engine, the
-/// orientation of a placed object, and one radius query in a filled clutter scene.
+/// The building blocks of a scene's cost: seeding the engine per scene (numpy's SeedSequence
+/// of [seed, i] and PCG64's seeding), a draw from a running engine, the orientation of a
+/// placed object, and one radius query in a filled clutter scene.
 void benchBlocks(const Options& options) {
   ps::Engine engine(kSeed);
   const double seedAndDraw = nsPerOp(options, [&](std::uint64_t n) {
     std::uint64_t sum = 0;
     for (std::uint64_t i = 0; i < n; ++i) {
-      engine.seed(ps::sceneSeed(kSeed, i));
+      engine = ps::sceneEngine(kSeed, i);
       sum += engine();
     }
     gSink = gSink + static_cast<double>(sum);
   });
-  const double seedOnly = nsPerOp(options, [&](std::uint64_t n) {
+  const double hiddenSeed = nsPerOp(options, [&](std::uint64_t n) {
+    std::uint64_t sum = 0;
     for (std::uint64_t i = 0; i < n; ++i) {
-      engine.seed(ps::sceneSeed(kSeed, i));
+      engine = ps::hiddenEngine(kSeed, i);
+      sum += engine();
     }
-    gSink = gSink + static_cast<double>(engine());
+    gSink = gSink + static_cast<double>(sum);
   });
   const double draw = nsPerOp(options, [&](std::uint64_t n) {
     double sum = 0;
@@ -378,9 +387,10 @@ void benchBlocks(const Options& options) {
   rule();
   std::printf("%-64s %12s\n", "operation", "ns");
   rule();
-  std::printf("%-64s %12.1f\n", "engine.seed(sceneSeed(seed, i)) alone", seedOnly);
-  std::printf("%-64s %12.1f\n", "engine.seed(...) + first draw (lazy: 156 seed steps, one word)",
+  std::printf("%-64s %12.1f\n", "sceneEngine(seed, i) + first draw (default_rng([seed, i]))",
               seedAndDraw);
+  std::printf("%-64s %12.1f\n", "hiddenEngine(seed, i) + first draw (a spawned SeedSequence)",
+              hiddenSeed);
   std::printf("%-64s %12.2f\n", "one uniform01 draw from a running engine", draw);
   std::printf("%-64s %12.1f\n", "orientation: Quaterniond(AngleAxisd(angle, z)) * init",
               orientation);
@@ -434,7 +444,7 @@ void benchBlocks(const Options& options) {
         checker = std::make_unique<ScanChecker>();
       }
       SceneLoop loop(setup.request, std::move(checker));
-      loop.engine().seed(kSeed);
+      loop.engine() = ps::Engine(kSeed);
       loop.scene();  // as far as it goes
       entries = loop.context().entries().size();
       ps::Candidate candidate;
@@ -483,10 +493,10 @@ void benchEnvironments(const Options& options) {
                 env.robosuiteUs * 1000.0 / batch);
   }
   std::printf(
-      "sample: engine seeded once and reused; +seed: engine.seed(sceneSeed(seed, i)) per "
+      "sample: engine seeded once and reused; +seed: engine = sceneEngine(seed, i) per "
       "scene (one scene alone);\nbatch1t: many scenes, as the service and sample_scenes "
-      "take them (blocks of 8192 through sampleSceneRange,\n1 thread, engines seeded 8 at a "
-      "time, results built); old: robosuite's scan of every entry, unpacked\n(the radius test "
+      "take them (blocks of 8192 through sampleSceneRange,\n1 thread, results built); old: "
+      "robosuite's scan of every entry, unpacked\n(the radius test "
       "before issue 5).\n");
 }
 
@@ -536,7 +546,7 @@ void benchClutter(const Options& options) {
     attempts.push_back(a.attemptsPerObject() * point.n);
   }
   std::printf(
-      "+seed: the default RadiusChecker with engine.seed(sceneSeed(seed, i)) per scene; "
+      "+seed: the default RadiusChecker with engine = sceneEngine(seed, i) per scene; "
       "sample: the same, engine\nreused; grid only / scan only: RadiusChecker(0) / "
       "RadiusChecker(max); robosuite scan: every entry, unpacked.\nsame: all four give the "
       "same attempts, failures and placements.\n");
@@ -663,7 +673,7 @@ void benchConfigFiles(const Options& options) {
                 batch[0], batch[1], json, stats.attemptsPerObject(), stats.failureRate());
   }
   std::printf(
-      "sample: engine seeded once and reused; +seed: engine.seed(sceneSeed(seed, i)) per scene; "
+      "sample: engine seeded once and reused; +seed: engine = sceneEngine(seed, i) per scene; "
       "batch1t/2t:\nSceneGenerator::sampleScenes on 1/2 threads (wall time per scene, results "
       "built); +json1t: batch1t plus\nthe JSON lines of sample_scenes.\n");
 }

@@ -198,7 +198,8 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     response.seed = seed;
     // Threads pay off only for large batches; the answer is the same either way.
     const unsigned threads = count >= 256 ? 0 : 1;
-    std::vector<SceneResult> scenes = generator->sampleScenes(prepared, seed, count, threads);
+    std::vector<SceneResult> scenes =
+        generator->sampleSceneRange(prepared, seed, request.first_scene, count, threads);
     if (placements >= kTrimAfterPlacements) {
       // roscpp frees the answer after this callback: the publishing thread trims a little later.
       std::lock_guard<std::mutex> lock(pendingMutex_);

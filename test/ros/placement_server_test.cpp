@@ -118,6 +118,33 @@ TEST_F(PlacementServerTest, SameSeedSameAnswerAndSceneIndependentOfCount) {
   EXPECT_NE(a.response.scenes[0], a.response.scenes[1]);
 }
 
+// first_scene: calls that each take a piece answer the scenes of one call, in order; the last
+// index of uint64 still works, one beyond it is refused with the reason.
+TEST_F(PlacementServerTest, FirstSceneGivesPiecesOfTheSameScenes) {
+  const SamplePlacements whole = call(seeded(4343, 6));
+  ASSERT_TRUE(whole.response.success);
+  ASSERT_EQ(whole.response.scenes.size(), 6u);
+  for (const std::uint64_t first : {0u, 2u, 4u}) {
+    SamplePlacements::Request request = seeded(4343, 2);
+    request.first_scene = first;
+    const SamplePlacements piece = call(request);
+    ASSERT_TRUE(piece.response.success) << piece.response.message;
+    EXPECT_EQ(piece.response.seed, 4343u);
+    ASSERT_EQ(piece.response.scenes.size(), 2u);
+    EXPECT_EQ(piece.response.scenes[0], whole.response.scenes[first]);
+    EXPECT_EQ(piece.response.scenes[1], whole.response.scenes[first + 1]);
+  }
+  SamplePlacements::Request request = seeded(4343, 1);
+  request.first_scene = std::numeric_limits<std::uint64_t>::max();
+  const SamplePlacements last = call(request);
+  EXPECT_TRUE(last.response.success) << last.response.message;
+  request.num_scenes = 2;
+  const SamplePlacements beyond = call(request);
+  EXPECT_FALSE(beyond.response.success);
+  EXPECT_NE(beyond.response.message.find("scene indices must stay below 2^64"), std::string::npos)
+      << beyond.response.message;
+}
+
 TEST_F(PlacementServerTest, ReturnedSeedReproducesTheScene) {
   const SamplePlacements first = call(SamplePlacements::Request());
   ASSERT_TRUE(first.response.success);

@@ -314,7 +314,7 @@ int expectSameScenes(const std::string& yaml, int scenes) {
     SampleContext context(engine, checker);
     for (int i = 0; i < scenes; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      engine.seed(sceneSeed(7, k));
+      engine = sceneEngine(7, k);
       context.clear();
       for (const FixtureSpec& f : request.fixtures) {
         context.addFixture(f.name, f.object.get(), f.position, f.orientation);

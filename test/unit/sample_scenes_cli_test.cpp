@@ -146,6 +146,72 @@ TEST(SampleScenesCli, BlocksAndThreadsGiveTheScenesOfSampleScenes) {
   EXPECT_EQ(z, first.position.z());
 }
 
+// Sharding: scenes 0 .. 999 of one process are the pieces of four processes that each take
+// --first-scene N --scenes 250, concatenated in order; pieces cross a block of 8192 too.
+TEST(SampleScenesCli, PiecesWithFirstSceneConcatenateToOneProcess) {
+  const CliRun whole = run({"--config", kDefaultConfig, "--seed", "77", "--scenes", "1000"});
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  ASSERT_EQ(whole.lines.size(), 1000u);
+  std::string pieces;
+  for (const char* first : {"0", "250", "500", "750"}) {
+    const CliRun piece = run({"--config", kDefaultConfig, "--seed", "77", "--first-scene", first,
+                              "--scenes", "250", "--threads", "1"});
+    ASSERT_EQ(piece.status, 0) << piece.err;
+    ASSERT_EQ(piece.lines.size(), 250u);
+    EXPECT_EQ(piece.lines.front().rfind(std::string("{\"scene\": ") + first + ",", 0), 0u);
+    pieces += piece.out;
+  }
+  EXPECT_EQ(pieces, whole.out);
+
+  const CliRun across = run({"--config", kDefaultConfig, "--seed", "77", "--first-scene", "8000",
+                             "--scenes", "400", "--threads", "2"});
+  const CliRun late = run({"--config", kDefaultConfig, "--seed", "77", "--first-scene", "8190",
+                           "--scenes", "3", "--threads", "1"});
+  ASSERT_EQ(across.lines.size(), 400u);
+  ASSERT_EQ(late.lines.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(late.lines[k], across.lines[190 + k]);
+  }
+}
+
+TEST(SampleScenesCli, FirstSceneNearTheEndOfTheIndices) {
+  const CliRun last = run({"--config", kDefaultConfig, "--seed", "3", "--first-scene",
+                           "18446744073709551615", "--scenes", "1"});
+  EXPECT_EQ(last.status, 0) << last.err;
+  ASSERT_EQ(last.lines.size(), 1u);
+  EXPECT_EQ(last.lines[0].rfind("{\"scene\": 18446744073709551615,", 0), 0u);
+  const CliRun beyond = run({"--config", kDefaultConfig, "--seed", "3", "--first-scene",
+                             "18446744073709551615", "--scenes", "2"});
+  EXPECT_EQ(beyond.status, 2);
+  EXPECT_NE(beyond.err.find("--first-scene 18446744073709551615 with --scenes 2"),
+            std::string::npos)
+      << beyond.err;
+  EXPECT_TRUE(beyond.out.empty());
+}
+
+// --describe: the values robosuite's samplers need, as derived (a 0.042 m cube: radius
+// 0.021 * sqrt(2), offsets -/+0.021), and the sampler tree with its sample_args.
+TEST(SampleScenesCli, DescribePrintsTheBuiltConfiguration) {
+  const CliRun r = run({"--config", kDefaultConfig, "--describe"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(r.lines.size(), 1u);
+  const std::string& d = r.lines[0];
+  EXPECT_NE(d.find("\"cube\": {\"horizontal_radius\": 0.02969848480983"), std::string::npos) << d;
+  EXPECT_NE(d.find("\"bottom_offset\": [0, 0, -0.021], \"top_offset\": [0, 0, 0.021]"),
+            std::string::npos);
+  EXPECT_NE(d.find("\"fixtures\": [{\"name\": \"table\", \"position\": [0, 0, 0.775]"),
+            std::string::npos);
+  EXPECT_NE(d.find("\"hidden\": [\"pill\"]"), std::string::npos);
+  EXPECT_NE(d.find("{\"type\": \"uniform\", \"name\": \"TableSampler\", \"objects\": "
+                   "[\"cube\", \"can\", \"ball\"], \"x_range\": [-0.35, 0.35]"),
+            std::string::npos);
+  EXPECT_NE(d.find("\"rotation\": [-0.785, 0.785], \"rotation_axis\": \"z\""), std::string::npos);
+  EXPECT_NE(d.find("\"sample_args\": {\"reference\": \"table\", \"on_top\": true}"),
+            std::string::npos);
+  EXPECT_NE(d.find("\"name\": \"HideSampler\""), std::string::npos);
+  EXPECT_NE(d.find("\"hides\": true"), std::string::npos);
+}
+
 TEST(SampleScenesCli, NumbersAreTheShortestThatReadBack) {
   SceneResult scene;
   scene.index = 3;
@@ -170,6 +236,22 @@ TEST(SampleScenesCli, SeedFromTheConfiguration) {
   EXPECT_EQ(r.status, 0) << r.err;
   ASSERT_EQ(r.lines.size(), 1u);
   EXPECT_NE(r.lines[0].find("\"seed\": 99,"), std::string::npos) << r.lines[0];
+}
+
+// Seed 0, from the flag or the configuration, is a fresh random seed, echoed with the scenes;
+// sent back, it gives the same scenes.
+TEST(SampleScenesCli, SeedZeroIsAFreshSeedEchoedBack) {
+  const CliRun a = run({"--config", kDefaultConfig, "--seed", "0", "--scenes", "2"});
+  ASSERT_EQ(a.status, 0) << a.err;
+  ASSERT_EQ(a.lines.size(), 2u);
+  const std::size_t at = a.lines[0].find("\"seed\": ") + 8;
+  const std::string seed = a.lines[0].substr(at, a.lines[0].find(',', at) - at);
+  EXPECT_NE(seed, "0");
+  EXPECT_NE(a.lines[1].find("\"seed\": " + seed + ","), std::string::npos);
+  const CliRun again = run({"--config", kDefaultConfig, "--seed", seed, "--scenes", "2"});
+  EXPECT_EQ(again.out, a.out);
+  const CliRun other = run({"--config", kDefaultConfig, "--seed", "0", "--scenes", "2"});
+  EXPECT_NE(other.out, a.out);
 }
 
 TEST(SampleScenesCli, FailingSceneExitsOne) {
@@ -270,6 +352,12 @@ TEST(SampleScenesCli, UsageErrorsExitTwo) {
           "sample_scenes: --max-attempts: 4294967296 is out of range (at most 4294967295)\n", 0),
       0u)
       << tooLarge.err;
+  const CliRun badFirst = run({"--config", kDefaultConfig, "--first-scene", "1e3"});
+  EXPECT_EQ(badFirst.status, 2);
+  EXPECT_EQ(badFirst.err.rfind(
+                "sample_scenes: --first-scene: expected a non-negative integer, got '1e3'\n", 0),
+            0u)
+      << badFirst.err;
   const CliRun badMode = run({"--config", kDefaultConfig, "--collision-check", "exact"});
   EXPECT_EQ(badMode.status, 2);
   EXPECT_NE(badMode.err.find("expected radius, fcl or radius_and_fcl, got 'exact'"),

@@ -52,10 +52,13 @@ inline std::string configError(const std::function<void()>& f) {
   return "no ConfigError";
 }
 
-/// The state of one scene: an engine, robosuite's radius checker and a context over both.
+/// The state of one scene, scene 0 of @p seed: its engine, robosuite's radius checker and a
+/// context over both.
 struct TestScene {
   explicit TestScene(std::uint64_t seed, std::uint32_t maxAttempts = 0)
-      : engine(seed), context(engine, checker, maxAttempts) {}
+      : engine(sceneEngine(seed, 0)), context(engine, checker, maxAttempts) {
+    context.setScene(seed, 0);
+  }
 
   Engine engine;
   RadiusChecker checker;

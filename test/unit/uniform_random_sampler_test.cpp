@@ -522,3 +522,79 @@ TEST(UniformRandomSampler, SameSeedSamePlacements) {
 
 }  // namespace
 }  // namespace placement_samplers
+
+namespace placement_samplers {
+namespace {
+
+// robosuite's draws, replayed on a copy of the scene's engine: per attempt x then y (a point
+// range draws too), after the accepted attempt one draw for a rotation pair even when
+// min == max, none for a fixed angle; rejected attempts draw no rotation.
+TEST(UniformRandomSampler, DrawOrderIsRobosuites) {
+  UniformSamplerParams p = region(-0.2, 0.2, 0.1, 0.1);
+  p.rotation = RotationSpec::range(0.25, 0.25);
+  p.ensureObjectBoundaryInRange = false;
+  p.referencePos = Eigen::Vector3d(0.5, 0.0, 0.8);
+  const UniformRandomSampler first("First", p, {makeSphere("a", 0.02)});
+  UniformSamplerParams q = region(-0.1, 0.1, -0.01, 0.01);
+  q.rotation = RotationSpec::fixed(0.7);
+  q.ensureObjectBoundaryInRange = false;
+  q.referencePos = p.referencePos + Eigen::Vector3d(0.0, 0.1, 0.0);  // on "a"'s line
+  const UniformRandomSampler second("Second", q, {makeSphere("b", 0.02)});
+
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    TestScene scene(seed);
+    Engine replay = scene.engine;
+    ASSERT_TRUE(first.sample(scene.context, Reference::byDefault(), true));
+    ASSERT_TRUE(second.sample(scene.context, Reference::byDefault(), true));
+    const auto& placed = scene.context.placements();
+    ASSERT_EQ(placed.size(), 2u);
+    EXPECT_EQ(placed[0].position.x(), uniform(replay, -0.2, 0.2) + 0.5);
+    EXPECT_EQ(placed[0].position.y(), uniform(replay, 0.1, 0.1) + 0.0);
+    EXPECT_EQ(uniform(replay, 0.25, 0.25), 0.25);  // the rotation pair's draw
+    // b is rejected while it lands within 0.04 m of a.
+    for (std::uint32_t attempt = 1; attempt < placed[1].attempts; ++attempt) {
+      const double x = uniform(replay, -0.1, 0.1) + 0.5;
+      const double y = uniform(replay, -0.01, 0.01) + 0.1;
+      EXPECT_LE(std::hypot(x - placed[0].position.x(), y - placed[0].position.y()), 0.04 + 1e-12);
+    }
+    EXPECT_EQ(placed[1].position.x(), uniform(replay, -0.1, 0.1) + 0.5);
+    EXPECT_EQ(placed[1].position.y(), uniform(replay, -0.01, 0.01) + 0.1);
+    // The next number of the scene's stream is the one after b's y: no rotation draw.
+    EXPECT_EQ(scene.context.engine()(), replay());
+  }
+}
+
+// Hidden objects draw from a stream of their own (hiddenEngine(seed, index)): hiding one
+// leaves the scene's stream where it was, and its position comes from the hidden stream.
+TEST(UniformRandomSampler, HiddenObjectsDrawNothingFromTheSceneStream) {
+  const std::string objects = R"(
+objects:
+  a: {shape: sphere, radius: 0.03}
+  b: {shape: sphere, radius: 0.03}
+  h: {shape: sphere, radius: 0.03}
+samplers:
+  - {name: A, objects: [a], x_range: [-0.2, 0.2], y_range: [-0.2, 0.2]}
+  - {name: B, objects: [b], x_range: [-0.2, 0.2], y_range: [-0.2, 0.2]}
+)";
+  const auto plain = test::buildFromYaml(objects);
+  const auto hiding = test::buildFromYaml(objects + "hide: [h]\n");
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    TestScene without(seed);
+    TestScene with(seed);
+    ASSERT_TRUE(plain->root->sample(without.context, Reference::byDefault(), true));
+    ASSERT_TRUE(hiding->root->sample(with.context, Reference::byDefault(), true));
+    ASSERT_EQ(with.context.placements().size(), 3u);
+    test::expectSamePlacements(
+        without.context.placements(),
+        {with.context.placements().begin(), with.context.placements().begin() + 2});
+    EXPECT_EQ(with.context.engine()(), without.context.engine()());
+    const ObjectPlacement& hidden = with.context.placements().back();
+    EXPECT_TRUE(hidden.hidden);
+    Engine stream = hiddenEngine(seed, 0);
+    EXPECT_EQ(hidden.position.x(), uniform(stream, -20.0, -10.0) + 0.0);
+    EXPECT_EQ(hidden.position.y(), uniform(stream, -20.0, -10.0) + 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace placement_samplers

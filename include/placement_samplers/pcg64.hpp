@@ -1,0 +1,99 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace placement_samplers {
+
+/// numpy's SeedSequence (numpy/random/bit_generator.pyx) with its default pool of four 32-bit
+/// words: the same pool and the same generated state for the same entropy, so that
+/// `numpy.random.default_rng([S, i])` and Pcg64::forScene(S, i) give the same numbers.
+///
+/// Entropy is a list of 32-bit words, as numpy assembles it: each non-negative integer split
+/// into 32-bit words, lowest first (0 is one word, a value below 2^32 one word, a larger
+/// 64-bit value two), the integers concatenated; then the spawn key the same way, after
+/// padding the entropy with zero words to the pool size when a spawn key is given.
+class SeedSequence {
+ public:
+  static constexpr std::size_t kPoolSize = 4;
+  /// At most this many entropy words (two 64-bit integers, a spawn key of two).
+  static constexpr std::size_t kMaxWords = 12;
+
+  /// SeedSequence(entropy, spawn_key=spawnKey) of numpy for the integers @p entropy
+  /// (@p entropyCount of them, at least one) and @p spawnKey (@p spawnKeyCount).
+  /// @throw std::invalid_argument when there is no entropy or more than kMaxWords words
+  SeedSequence(const std::uint64_t* entropy, std::size_t entropyCount,
+               const std::uint64_t* spawnKey = nullptr, std::size_t spawnKeyCount = 0);
+
+  /// numpy's SeedSequence([seed, index]): what default_rng([seed, index]) uses.
+  static SeedSequence ofPair(std::uint64_t seed, std::uint64_t index);
+
+  /// generate_state(count, uint32): @p count words into @p out.
+  void generateState(std::uint32_t* out, std::size_t count) const;
+  /// generate_state(count, uint64): 2 * count 32-bit words, paired little-endian.
+  void generateState64(std::uint64_t* out, std::size_t count) const;
+
+  /// The mixed entropy pool (numpy's `pool` attribute).
+  const std::array<std::uint32_t, kPoolSize>& pool() const { return pool_; }
+
+ private:
+  SeedSequence() = default;
+  /// Mixes @p count words into pool_ (numpy's mix_entropy).
+  void mixEntropy(const std::uint32_t* words, std::size_t count);
+
+  std::array<std::uint32_t, kPoolSize> pool_{};
+};
+
+/// numpy's PCG64 bit generator (PCG XSL RR 128/64: a 128-bit LCG, output the xor of its halves
+/// rotated by the top six bits), seeded as numpy seeds it from a SeedSequence: four 64-bit
+/// words of generate_state, the first two the initial state, the last two the stream.
+///
+/// Satisfies UniformRandomBitGenerator. Trivially copyable, 32 bytes, no heap.
+class Pcg64 {
+ public:
+  using result_type = std::uint64_t;
+
+  /// numpy's PCG64(SeedSequence(0)), i.e. default_rng(0).
+  Pcg64() : Pcg64(std::uint64_t{0}) {}
+  /// numpy's default_rng(@p seed) for one integer seed.
+  explicit Pcg64(std::uint64_t seed);
+  /// numpy's PCG64(@p sequence).
+  explicit Pcg64(const SeedSequence& sequence);
+
+  /// numpy's default_rng([seed, index]): the stream of scene @p index of request seed @p seed.
+  static Pcg64 forScene(std::uint64_t seed, std::uint64_t index);
+
+  /// The next 64-bit output (numpy's next_uint64, random_raw()).
+  result_type operator()() {
+    state_ = state_ * multiplier() + increment_;
+    const auto high = static_cast<std::uint64_t>(state_ >> 64);
+    const auto low = static_cast<std::uint64_t>(state_);
+    const unsigned rotation = static_cast<unsigned>(high >> 58);
+    const std::uint64_t x = high ^ low;
+    return (x >> rotation) | (x << ((64u - rotation) & 63u));
+  }
+
+  static constexpr result_type min() { return 0; }
+  static constexpr result_type max() { return ~result_type{0}; }
+
+  /// State as numpy's PCG64.state shows it: {state high, state low, inc high, inc low}.
+  std::array<std::uint64_t, 4> stateWords() const;
+
+ private:
+  __extension__ using Uint128 = unsigned __int128;
+  struct Unseeded {};
+  explicit Pcg64(Unseeded) {}
+
+  static constexpr Uint128 multiplier() {
+    return (static_cast<Uint128>(0x2360ED051FC65DA4ULL) << 64) | 0x4385DF649FCCF645ULL;
+  }
+  /// pcg_setseq_128_srandom_r: stream from @p sequence, then two steps around adding the state.
+  void seed(Uint128 initState, Uint128 sequence);
+  void seedFrom(const SeedSequence& sequence);
+
+  Uint128 state_ = 0;
+  Uint128 increment_ = 1;
+};
+
+}  // namespace placement_samplers
