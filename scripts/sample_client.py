@@ -2,7 +2,7 @@
 """Calls the placement service once and prints the scene.
 
 usage: rosrun placement_samplers sample_client.py [--service NAME] [--seed S]
-       [--scenes K] [--sampler NAME] [--dry-run]
+       [--scenes K] [--first-scene N] [--sampler NAME] [--dry-run]
 """
 import argparse
 import sys
@@ -30,6 +30,8 @@ def main():
     parser.add_argument("--seed", type=bounded("--seed", 2**64 - 1), default=0,
                         help="0 = the node picks one")
     parser.add_argument("--scenes", type=bounded("--scenes", 2**32 - 1), default=1)
+    parser.add_argument("--first-scene", type=bounded("--first-scene", 2**64 - 1), default=0,
+                        help="index of the first scene of the seed to return")
     parser.add_argument("--sampler", default="", help="'' = the root composite")
     parser.add_argument("--dry-run", action="store_true", help="broadcast nothing")
     parser.add_argument("--timeout", type=float, default=30.0, help="wait for the service [s]")
@@ -43,13 +45,14 @@ def main():
         return 2
     call = rospy.ServiceProxy(args.service, SamplePlacements)
     request = SamplePlacementsRequest(seed=args.seed, num_scenes=args.scenes,
+                                      first_scene=args.first_scene,
                                       sampler=args.sampler, dry_run=args.dry_run)
     response = call(request)
     print("success: %s  seed: %d  frame: %s" % (response.success, response.seed, response.frame_id))
     if response.message:
         print("message: %s" % response.message)
     for index, scene in enumerate(response.scenes):
-        print("scene %d" % index)
+        print("scene %d" % (args.first_scene + index))
         for p in scene.placements:
             q = p.pose.orientation
             print("  %-12s %-14s xyz [% .4f % .4f % .4f]  xyzw [% .3f % .3f % .3f % .3f]  attempts %d"

@@ -40,6 +40,18 @@ class SampleClientTest(unittest.TestCase):
         self.assertEqual(out.returncode, 1)
         self.assertIn("message: unknown sampler 'Nope'", out.stdout)
 
+    def test_example_client_first_scene_is_that_scene_of_the_seed(self):
+        def scenes(*extra):
+            out = subprocess.run([sys.executable, CLIENT, "--seed", "5", "--dry-run"] + list(extra),
+                                 capture_output=True, text=True, timeout=60)
+            self.assertEqual(out.returncode, 0, out.stderr)
+            return out.stdout.split("scene ")[1:]
+        three = scenes("--scenes", "3")
+        third = scenes("--first-scene", "2")
+        self.assertEqual(len(three), 3)
+        self.assertEqual(third, [three[2]])
+        self.assertTrue(third[0].startswith("2\n"))
+
     def test_example_client_refuses_a_negative_seed_with_usage(self):
         out = subprocess.run([sys.executable, CLIENT, "--seed", "-1"],
                              capture_output=True, text=True, timeout=60)
