@@ -5,6 +5,7 @@
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -196,6 +197,41 @@ TEST_F(SceneLifecycleTest, MarkersHaveLabelsAndColoursThatFollowTheName) {
   }
   ASSERT_EQ(colours.size(), 5u);
   EXPECT_NE(colours.at("cube"), colours.at("can"));
+}
+
+// tf_static: true puts the frames on the latched /tf_static, and the latched message holds the
+// current scene's frames only: a late subscriber gets no frame of an older scene.
+TEST_F(SceneLifecycleTest, StaticFramesHoldTheCurrentSceneOnly) {
+  ros::NodeHandle nh;
+  nh.setParam("/placement_server/tf_static", true);
+  ASSERT_TRUE(reload().response.success);
+  SamplePlacements::Request withBox = seeded(51);
+  withBox.fixtures.push_back(boxFixture("static_box", 3.0));
+  ASSERT_TRUE(call(withBox).response.success);
+  const SamplePlacements plain = call(seeded(52));
+  ASSERT_TRUE(plain.response.success);
+  const geometry_msgs::Point cube =
+      placement_samplers::test::byName(plain.response.scenes[0]).at("cube").pose.position;
+  ros::WallDuration(0.5).sleep();
+  Latest<tf2_msgs::TFMessage> latched("/tf_static");
+  ASSERT_TRUE(latched.waitUntil(
+      [&](const tf2_msgs::TFMessage& m) {
+        for (const auto& t : m.transforms) {
+          if (t.child_frame_id == "test/cube") {
+            return t.transform.translation.x == cube.x && t.transform.translation.y == cube.y;
+          }
+        }
+        return false;
+      },
+      10.0));
+  std::set<std::string> frames;
+  for (const auto& t : latched.get()->transforms) {
+    frames.insert(t.child_frame_id);
+  }
+  EXPECT_EQ(frames, (std::set<std::string>{"test/table", "test/far_bin", "test/plate", "test/cup",
+                                           "test/cube", "test/can", "test/ball", "test/pill"}));
+  nh.setParam("/placement_server/tf_static", false);
+  ASSERT_TRUE(reload().response.success);
 }
 
 TEST_F(SceneLifecycleTest, ReloadSaysWhenThreadsTakeEffect) {
