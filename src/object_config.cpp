@@ -13,6 +13,19 @@
 namespace placement_samplers {
 namespace {
 
+/// Keys of an object besides its shape's: what the offsets and orientation of the whole are.
+const std::vector<std::string> kObjectKeys{"horizontal_radius", "bottom_offset", "top_offset",
+                                           "init_orientation"};
+/// Keys of one part of a composite object besides its shape's: its pose in the object frame.
+const std::vector<std::string> kPartKeys{"position", "orientation"};
+
+/// @p shapeKeys followed by @p context: the keys a shape's map may hold.
+void checkShapeKeys(const ConfigNode& node, std::vector<std::string> shapeKeys,
+                    const std::vector<std::string>& context) {
+  shapeKeys.insert(shapeKeys.end(), context.begin(), context.end());
+  node.checkKeys(shapeKeys);
+}
+
 double positive(const ConfigNode& node) {
   const double v = node.asDouble();
   if (v <= 0.0) {
@@ -63,9 +76,9 @@ std::string geometryProblem(const std::vector<Shape>& shapes,
   return "";
 }
 
-Shape parseMesh(const std::string& name, const ConfigNode& node, MeshLoader& meshes) {
-  node.checkKeys({"shape", "mesh", "scale", "horizontal_radius", "bottom_offset", "top_offset",
-                  "init_orientation"});
+Shape parseMesh(const std::string& name, const ConfigNode& node, MeshLoader& meshes,
+                const std::vector<std::string>& context) {
+  checkShapeKeys(node, {"shape", "mesh", "scale"}, context);
   const ConfigNode& uri = node.at("mesh");
   const std::string& uriText = uri.asString();
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
@@ -142,15 +155,16 @@ std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
   }
 }
 
-Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader& meshes) {
+/// One shape: an object's (with @p context kObjectKeys) or a composite's part (kPartKeys).
+Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader& meshes,
+                     const std::vector<std::string>& context) {
   const ConfigNode& shapeNode = node.at("shape");
   const std::string& type = shapeNode.asString();
   if (type == "mesh") {
-    return parseMesh(name, node, meshes);
+    return parseMesh(name, node, meshes, context);
   }
   if (type == "box") {
-    node.checkKeys(
-        {"shape", "size", "horizontal_radius", "bottom_offset", "top_offset", "init_orientation"});
+    checkShapeKeys(node, {"shape", "size"}, context);
     const ConfigNode& size = node.at("size");
     const Eigen::Vector3d s = size.asVector3();
     const bool positive = (s.array() > 0.0).all();
@@ -166,18 +180,48 @@ Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader
     return Shape::box(s);
   }
   if (type == "cylinder" || type == "capsule") {
-    node.checkKeys({"shape", "radius", "length", "horizontal_radius", "bottom_offset", "top_offset",
-                    "init_orientation"});
+    checkShapeKeys(node, {"shape", "radius", "length"}, context);
     const double radius = positive(node.at("radius"));
     const double length = positive(node.at("length"));
     return type == "cylinder" ? Shape::cylinder(radius, length) : Shape::capsule(radius, length);
   }
   if (type == "sphere") {
-    node.checkKeys({"shape", "radius", "horizontal_radius", "bottom_offset", "top_offset",
-                    "init_orientation"});
+    checkShapeKeys(node, {"shape", "radius"}, context);
     return Shape::sphere(positive(node.at("radius")));
   }
   shapeNode.fail("expected one of box, cylinder, sphere, capsule, mesh, got " + quoteText(type));
+}
+
+/// The parts of a composite object (`shapes:`), as robosuite's CompositeObject: each a
+/// primitive or a mesh at its position and orientation in the object frame.
+std::vector<Shape> parseComposite(const std::string& name, const ConfigNode& node,
+                                  MeshLoader& meshes) {
+  std::vector<std::string> keys{"shapes"};
+  keys.insert(keys.end(), kObjectKeys.begin(), kObjectKeys.end());
+  node.checkKeys(keys);
+  const ConfigNode& list = node.at("shapes");
+  if (!list.isList() || list.elements().empty()) {
+    list.fail("expected a non-empty list of shapes, each a map with shape, its sizes, position "
+              "and orientation");
+  }
+  std::vector<Shape> shapes;
+  for (const ConfigNode& part : list.elements()) {
+    if (!part.isMap() || part.get("shape") == nullptr) {
+      part.fail("expected a map with the key 'shape' (box, cylinder, sphere, capsule or mesh)");
+    }
+    Shape shape = parsePrimitive(name, part, meshes, kPartKeys);
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    if (const ConfigNode* p = part.get("position")) {
+      position = boundedVector(*p);
+    }
+    if (const ConfigNode* q = part.get("orientation")) {
+      orientation = parseQuaternion(*q);
+    }
+    shape.pose = Eigen::Translation3d(position) * orientation * shape.pose;
+    shapes.push_back(std::move(shape));
+  }
+  return shapes;
 }
 
 }  // namespace
@@ -242,13 +286,18 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
   std::vector<Shape> shapes;
   if (node.get("urdf_file") != nullptr || node.get("urdf_param") != nullptr) {
     shapes = parseUrdf(name, node, options, meshes);
+  } else if (node.get("shapes") != nullptr) {
+    if (node.get("shape") != nullptr) {
+      node.fail("give either shape or shapes (a composite object), not both");
+    }
+    shapes = parseComposite(name, node, meshes);
   } else {
     if (node.get("shape") == nullptr) {
       node.fail(
-          "missing required key 'shape' (box, cylinder, sphere, capsule or mesh), or urdf_file or "
-          "urdf_param");
+          "missing required key 'shape' (box, cylinder, sphere, capsule or mesh), or shapes, "
+          "urdf_file or urdf_param");
     }
-    shapes.push_back(parsePrimitive(name, node, meshes));
+    shapes.push_back(parsePrimitive(name, node, meshes, kObjectKeys));
   }
 
   ObjectOverrides overrides;

@@ -331,10 +331,48 @@ TEST(ConfigBuilder, YamlSyntaxAndDocumentErrors) {
   EXPECT_EQ(buildError("- a\n- b\n"), "test.yaml: the configuration must be a map of parameters");
 }
 
+// robosuite's CompositeObject (a hammer: handle and head): parts at their poses in the object
+// frame; offsets and radius derived over all of them.
+TEST(ConfigBuilder, CompositeObjectsDeriveTheirBoundsOverEveryPart) {
+  const auto config = buildFromYaml(R"(
+objects:
+  hammer:
+    shapes:
+      - {shape: cylinder, radius: 0.015, length: 0.2, orientation: [0, 0.7071067811865476, 0, 0.7071067811865476]}
+      - {shape: box, size: [0.03, 0.08, 0.04], position: [0.1, 0, 0]}
+)");
+  const ObjectModel& hammer = *config->findObjectPtr("hammer");
+  ASSERT_EQ(hammer.shapes.size(), 2u);
+  // The handle lies along x (rotated 90 degrees about y), the head sits at its end.
+  EXPECT_NEAR((hammer.shapes[0].pose.linear() * Eigen::Vector3d::UnitZ()).x(), 1.0, 1e-12);
+  EXPECT_EQ(hammer.shapes[1].pose.translation(), Eigen::Vector3d(0.1, 0, 0));
+  // Bottom and top from the head (z +-0.02), the radius from the head's far corner.
+  EXPECT_NEAR(hammer.bottomOffset.z(), -0.02, 1e-12);
+  EXPECT_NEAR(hammer.topOffset.z(), 0.02, 1e-12);
+  EXPECT_NEAR(hammer.horizontalRadius, std::hypot(0.115, 0.04), 1e-12);
+
+  EXPECT_EQ(buildError("objects:\n  h: {shapes: []}\n"),
+            "objects.h.shapes: expected a non-empty list of shapes, each a map with shape, its "
+            "sizes, position and orientation");
+  EXPECT_EQ(buildError("objects:\n  h: {shapes: [{size: [1, 1, 1]}]}\n"),
+            "objects.h.shapes[0]: expected a map with the key 'shape' (box, cylinder, sphere, "
+            "capsule or mesh)");
+  EXPECT_EQ(buildError("objects:\n  h: {shapes: [{shape: sphere, radius: 1, init_orientation: "
+                       "[0, 0, 0, 1]}]}\n"),
+            "objects.h.shapes[0]: unknown key 'init_orientation' (expected one of: shape, radius, "
+            "position, orientation)");
+  EXPECT_EQ(buildError("objects:\n  h: {shape: sphere, radius: 1, shapes: []}\n"),
+            "objects.h: give either shape or shapes (a composite object), not both");
+  EXPECT_EQ(buildError("objects:\n  h: {shapes: [{shape: box, size: [1, 1, 1], orientation: "
+                       "[0, 0, 0, 2]}]}\n"),
+            "objects.h.shapes[0].orientation: expected a unit quaternion [x, y, z, w], got one of "
+            "norm 2");
+}
+
 TEST(ConfigBuilder, ObjectShapeErrors) {
   EXPECT_EQ(buildError("objects:\n  cube: {size: [1, 1, 1]}\n"),
             "objects.cube: missing required key 'shape' (box, cylinder, sphere, capsule or mesh), "
-            "or urdf_file or urdf_param");
+            "or shapes, urdf_file or urdf_param");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: cube, size: [1, 1, 1]}\n"),
             "objects.cube.shape: expected one of box, cylinder, sphere, capsule, mesh, got 'cube'");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: 3}\n"),
