@@ -201,8 +201,9 @@ std::vector<Shape> parseComposite(const std::string& name, const ConfigNode& nod
   node.checkKeys(keys);
   const ConfigNode& list = node.at("shapes");
   if (!list.isList() || list.elements().empty()) {
-    list.fail("expected a non-empty list of shapes, each a map with shape, its sizes, position "
-              "and orientation");
+    list.fail(
+        "expected a non-empty list of shapes, each a map with shape, its sizes, position "
+        "and orientation");
   }
   std::vector<Shape> shapes;
   for (const ConfigNode& part : list.elements()) {

@@ -685,10 +685,11 @@ int usage(const char* self) {
                "       %s [--quick] --config FILE [--config FILE ...]\n"
                "Times the samplers on fixed configurations and seeds and prints tables.\n"
                "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
-               "(default: %s). --quick: fewer, shorter repetitions. --config: time these\n"
+               "(default: %s, the package's config/ as ROS_PACKAGE_PATH finds it). --quick:\n"
+               "fewer, shorter repetitions. --config: time these\n"
                "configuration files only (any sampler setup, relative paths from the file).\n"
                "--default-malloc: do not tune malloc as sample_scenes and placement_server do.\n",
-               self, self, PLACEMENT_SAMPLERS_CONFIG_DIR);
+               self, self, defaultConfigDir().c_str());
   return 2;
 }
 
