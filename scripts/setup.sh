@@ -19,7 +19,7 @@ PS_PACKAGES=(
   liburdf-dev liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev
   libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
   librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev libbenchmark-dev
-  libyaml-cpp-dev zlib1g-dev catkin-lint
+  libyaml-cpp-dev zlib1g-dev libmujoco-dev catkin-lint
 )
 
 ps_sudo() {

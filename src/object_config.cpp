@@ -7,6 +7,7 @@
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
+#include "placement_samplers/mjcf_geometry.hpp"
 #include "placement_samplers/text.hpp"
 #include "placement_samplers/urdf_geometry.hpp"
 
@@ -155,6 +156,29 @@ std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
   }
 }
 
+/// The collision geometry and sites of an `mjcf_file` object (robosuite's MujocoXMLObject).
+MjcfObject parseMjcf(const std::string& name, const ConfigNode& node, MeshLoader& meshes) {
+  std::vector<std::string> keys{"mjcf_file"};
+  keys.insert(keys.end(), kObjectKeys.begin(), kObjectKeys.end());
+  node.checkKeys(keys);
+  const ConfigNode& file = node.at("mjcf_file");
+  const std::string& uri = file.asString();
+  const std::string object = "object " + quoteText(name) + ": ";
+  std::string path;
+  try {
+    path = meshes.resolve(uri);
+  } catch (const ConfigError& e) {
+    file.fail(object + "mjcf_file " + e.what());
+  }
+  const std::string label =
+      "mjcf_file " + quoteText(uri) + (path != uri ? " (" + escapeText(path) + ")" : "");
+  try {
+    return loadMjcfObject(path, limits::kMeshTriangles);
+  } catch (const ConfigError& e) {
+    file.fail(object + label + ": " + e.what());
+  }
+}
+
 /// One shape: an object's (with @p context kObjectKeys) or a composite's part (kPartKeys).
 Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader& meshes,
                      const std::vector<std::string>& context) {
@@ -285,7 +309,16 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
               std::string(ConfigNode::typeName(node.type())));
   }
   std::vector<Shape> shapes;
-  if (node.get("urdf_file") != nullptr || node.get("urdf_param") != nullptr) {
+  ObjectOverrides overrides;
+  if (node.get("mjcf_file") != nullptr) {
+    // robosuite's values are the sites' positions: they take the place of derived ones.
+    MjcfObject mjcf = parseMjcf(name, node, meshes);
+    shapes = std::move(mjcf.shapes);
+    overrides.hasBottomOffset = overrides.hasTopOffset = overrides.hasHorizontalRadius = true;
+    overrides.bottomOffset = mjcf.bottomOffset;
+    overrides.topOffset = mjcf.topOffset;
+    overrides.horizontalRadius = mjcf.horizontalRadius;
+  } else if (node.get("urdf_file") != nullptr || node.get("urdf_param") != nullptr) {
     shapes = parseUrdf(name, node, options, meshes);
   } else if (node.get("shapes") != nullptr) {
     if (node.get("shape") != nullptr) {
@@ -296,12 +329,11 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
     if (node.get("shape") == nullptr) {
       node.fail(
           "missing required key 'shape' (box, cylinder, sphere, capsule or mesh), or shapes, "
-          "urdf_file or urdf_param");
+          "mjcf_file, urdf_file or urdf_param");
     }
     shapes.push_back(parsePrimitive(name, node, meshes, kObjectKeys));
   }
 
-  ObjectOverrides overrides;
   if (const ConfigNode* r = node.get("horizontal_radius")) {
     overrides.hasHorizontalRadius = true;
     overrides.horizontalRadius = r->asDouble();

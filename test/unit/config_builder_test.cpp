@@ -372,7 +372,7 @@ objects:
 TEST(ConfigBuilder, ObjectShapeErrors) {
   EXPECT_EQ(buildError("objects:\n  cube: {size: [1, 1, 1]}\n"),
             "objects.cube: missing required key 'shape' (box, cylinder, sphere, capsule or mesh), "
-            "or shapes, urdf_file or urdf_param");
+            "or shapes, mjcf_file, urdf_file or urdf_param");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: cube, size: [1, 1, 1]}\n"),
             "objects.cube.shape: expected one of box, cylinder, sphere, capsule, mesh, got 'cube'");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: 3}\n"),

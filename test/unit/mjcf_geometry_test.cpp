@@ -1,0 +1,124 @@
+// MJCF objects read as robosuite reads them: the three sites exactly, collision geoms through
+// nested bodies (MuJoCo's defaults, fromto and degrees), visual geoms left out, both layouts,
+// meshes with their scale, and every error naming its cause.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "placement_samplers/config_builder.hpp"
+#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/mjcf_geometry.hpp"
+
+namespace placement_samplers {
+namespace {
+
+const std::string kData = std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/test/data/mjcf/";
+
+std::string loadError(const std::string& file) {
+  try {
+    loadMjcfObject(kData + file, 100000);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no ConfigError";
+}
+
+TEST(MjcfGeometry, SitesAndCollisionGeomsOfTheCurrentLayout) {
+  const MjcfObject o = loadMjcfObject(kData + "box_object.xml", 100000);
+  EXPECT_EQ(o.bottomOffset, Eigen::Vector3d(0, 0, 0));
+  EXPECT_EQ(o.topOffset, Eigen::Vector3d(0, 0, 0.08));
+  EXPECT_DOUBLE_EQ(o.horizontalRadius, std::hypot(0.06, 0.08));
+  EXPECT_EQ(o.visualGeoms, 1u);
+  ASSERT_EQ(o.shapes.size(), 2u);
+  // The default class gives the box its half sizes: full extents here.
+  EXPECT_EQ(o.shapes[0].type, ShapeType::Box);
+  EXPECT_TRUE(o.shapes[0].size.isApprox(Eigen::Vector3d(0.04, 0.06, 0.08)));
+  EXPECT_TRUE(o.shapes[0].pose.translation().isApprox(Eigen::Vector3d(0, 0, 0.04)));
+  // fromto along the handle body's x, that body turned 90 degrees about z: along y here.
+  const Shape& bar = o.shapes[1];
+  EXPECT_EQ(bar.type, ShapeType::Capsule);
+  EXPECT_NEAR(bar.radius, 0.01, 1e-12);
+  EXPECT_NEAR(bar.length, 0.1, 1e-12);
+  EXPECT_TRUE(bar.pose.translation().isApprox(Eigen::Vector3d(0.1, 0.05, 0.04), 1e-9))
+      << bar.pose.translation().transpose();
+  EXPECT_NEAR(std::abs((bar.pose.linear() * Eigen::Vector3d::UnitZ()).y()), 1.0, 1e-9);
+}
+
+TEST(MjcfGeometry, OlderCollisionAndVisualBodies) {
+  const MjcfObject o = loadMjcfObject(kData + "old_layout.xml", 100000);
+  ASSERT_EQ(o.shapes.size(), 1u);
+  EXPECT_EQ(o.visualGeoms, 1u);
+  EXPECT_EQ(o.shapes[0].type, ShapeType::Cylinder);
+  EXPECT_NEAR(o.shapes[0].radius, 0.03, 1e-12);
+  EXPECT_NEAR(o.shapes[0].length, 0.12, 1e-12);
+  EXPECT_EQ(o.topOffset, Eigen::Vector3d(0, 0, 0.12));
+  EXPECT_DOUBLE_EQ(o.horizontalRadius, 0.03);
+}
+
+// MuJoCo moves a mesh to its centre of mass and turns it to its principal axes; the geom pose
+// it returns undoes that, so the vertices land where the file and the scale put them.
+TEST(MjcfGeometry, MeshesKeepTheirScaleAndPlace) {
+  const MjcfObject o = loadMjcfObject(kData + "mesh_object.xml", 100000);
+  ASSERT_EQ(o.shapes.size(), 1u);
+  ASSERT_EQ(o.shapes[0].type, ShapeType::Mesh);
+  ASSERT_TRUE(o.shapes[0].mesh);
+  EXPECT_EQ(o.shapes[0].mesh->triangles.size(), 12u);
+  const Bounds b = shapesBounds(o.shapes, Eigen::Quaterniond::Identity());
+  EXPECT_NEAR(b.bottomZ, 0.0, 1e-6);
+  EXPECT_NEAR(b.topZ, 0.08, 1e-6);
+  EXPECT_NEAR(b.horizontalRadius, std::hypot(0.06, 0.04), 1e-6);
+  try {
+    loadMjcfObject(kData + "mesh_object.xml", 11);
+    FAIL() << "expected the triangle limit";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "its meshes have more than 11 triangles (limit)");
+  }
+}
+
+TEST(MjcfGeometry, ErrorsNameTheCause) {
+  EXPECT_EQ(loadError("no_top_site.xml"),
+            "no site 'top_site' (robosuite reads bottom_site, top_site and "
+            "horizontal_radius_site)");
+  const std::string missing = loadError("missing_mesh.xml");
+  EXPECT_EQ(missing.rfind("MuJoCo could not load it: ", 0), 0u) << missing;
+  EXPECT_NE(missing.find("no_such_mesh.stl"), std::string::npos) << missing;
+  const std::string malformed = loadError("malformed.xml");
+  EXPECT_EQ(malformed.rfind("MuJoCo could not load it: ", 0), 0u) << malformed;
+  // MuJoCo would read a URDF file too; robosuite's objects are MJCF.
+  EXPECT_EQ(loadError("../urdf/chain.urdf"),
+            "not an MJCF file: its root element is <robot>, expected <mujoco>");
+  EXPECT_NE(loadError("no_such_file.xml").find("file not found"), std::string::npos)
+      << loadError("no_such_file.xml");
+}
+
+// In a configuration: robosuite's values come from the sites, the geometry from the geoms.
+TEST(MjcfGeometry, ObjectsInAConfiguration) {
+  BuildOptions options;
+  options.baseDirectory = kData;
+  const auto config = buildSceneConfig(parseYaml(R"(
+objects:
+  box: {mjcf_file: box_object.xml}
+  can: {mjcf_file: old_layout.xml, horizontal_radius: 0.05}
+)",
+                                                 "test.yaml"),
+                                       options);
+  const ObjectModel& box = *config->findObjectPtr("box");
+  EXPECT_EQ(box.topOffset, Eigen::Vector3d(0, 0, 0.08));
+  EXPECT_DOUBLE_EQ(box.horizontalRadius, 0.1);
+  EXPECT_EQ(box.shapes.size(), 2u);
+  EXPECT_DOUBLE_EQ(config->findObjectPtr("can")->horizontalRadius, 0.05);  // override wins
+  try {
+    buildSceneConfig(parseYaml("objects:\n  x: {mjcf_file: no_top_site.xml}\n", "t.yaml"), options);
+    FAIL();
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("objects.x.mjcf_file: object 'x': mjcf_file 'no_top_site.xml' (", 0), 0u)
+        << m;
+    EXPECT_NE(m.find("): no site 'top_site'"), std::string::npos) << m;
+  }
+}
+
+}  // namespace
+}  // namespace placement_samplers
