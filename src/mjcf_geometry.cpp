@@ -180,8 +180,13 @@ MjcfObject loadMjcfObject(const std::string& path, std::size_t maxTriangles) {
   MjcfObject out;
   out.bottomOffset = sitePos(m, "bottom_site", top);
   out.topOffset = sitePos(m, "top_site", top);
-  const Eigen::Vector3d radius = sitePos(m, "horizontal_radius_site", top);
-  out.horizontalRadius = std::hypot(radius.x(), radius.y());
+  // robosuite's MujocoXMLObject.horizontal_radius is the site's x coordinate alone.
+  out.horizontalRadius = sitePos(m, "horizontal_radius_site", top).x();
+  if (!(out.horizontalRadius >= 0.0)) {
+    throw ConfigError("horizontal_radius_site has a negative x (" +
+                      std::to_string(out.horizontalRadius) +
+                      "); robosuite takes x as the horizontal radius");
+  }
 
   std::size_t triangles = 0;
   for (int g = 0; g < m.ngeom; ++g) {

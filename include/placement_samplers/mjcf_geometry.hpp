@@ -14,7 +14,7 @@ struct MjcfObject {
   std::vector<Shape> shapes;      ///< geoms with contype or conaffinity non-zero
   Eigen::Vector3d bottomOffset;   ///< bottom_site pos [m]
   Eigen::Vector3d topOffset;      ///< top_site pos [m]
-  double horizontalRadius = 0.0;  ///< x-y norm of horizontal_radius_site pos [m]
+  double horizontalRadius = 0.0;  ///< x of horizontal_radius_site pos, as robosuite [m]
   std::size_t visualGeoms = 0;    ///< geoms left out (contype and conaffinity 0)
 };
 

@@ -29,7 +29,8 @@ TEST(MjcfGeometry, SitesAndCollisionGeomsOfTheCurrentLayout) {
   const MjcfObject o = loadMjcfObject(kData + "box_object.xml", 100000);
   EXPECT_EQ(o.bottomOffset, Eigen::Vector3d(0, 0, 0));
   EXPECT_EQ(o.topOffset, Eigen::Vector3d(0, 0, 0.08));
-  EXPECT_DOUBLE_EQ(o.horizontalRadius, std::hypot(0.06, 0.08));
+  // robosuite takes the site's x alone (MujocoXMLObject.horizontal_radius), not its x-y norm.
+  EXPECT_DOUBLE_EQ(o.horizontalRadius, 0.06);
   EXPECT_EQ(o.visualGeoms, 1u);
   ASSERT_EQ(o.shapes.size(), 2u);
   // The default class gives the box its half sizes: full extents here.
@@ -106,7 +107,7 @@ objects:
                                        options);
   const ObjectModel& box = *config->findObjectPtr("box");
   EXPECT_EQ(box.topOffset, Eigen::Vector3d(0, 0, 0.08));
-  EXPECT_DOUBLE_EQ(box.horizontalRadius, 0.1);
+  EXPECT_DOUBLE_EQ(box.horizontalRadius, 0.06);
   EXPECT_EQ(box.shapes.size(), 2u);
   EXPECT_DOUBLE_EQ(config->findObjectPtr("can")->horizontalRadius, 0.05);  // override wins
   try {
