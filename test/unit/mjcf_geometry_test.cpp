@@ -94,6 +94,29 @@ TEST(MjcfGeometry, ErrorsNameTheCause) {
       << loadError("no_such_file.xml");
 }
 
+// The shipped examples (config/robosuite_objects/, used by config/pick_place_mjcf.yaml).
+TEST(MjcfGeometry, ShippedExamples) {
+  const std::string dir = std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) + "/config/robosuite_objects/";
+  const MjcfObject milk = loadMjcfObject(dir + "milk.xml", 100000);
+  ASSERT_EQ(milk.shapes.size(), 1u);
+  ASSERT_EQ(milk.shapes[0].type, ShapeType::Mesh);
+  const Bounds carton = shapesBounds(milk.shapes, Eigen::Quaterniond::Identity());
+  EXPECT_NEAR(carton.bottomZ, -0.085, 1e-6);  // the mesh as the file has it
+  EXPECT_NEAR(carton.topZ, 0.075, 1e-6);
+  EXPECT_DOUBLE_EQ(milk.horizontalRadius, 0.025);
+  const MjcfObject bread = loadMjcfObject(dir + "bread.xml", 100000);
+  ASSERT_EQ(bread.shapes.size(), 2u);
+  EXPECT_EQ(bread.shapes[1].type, ShapeType::Capsule);
+  const MjcfObject nut = loadMjcfObject(dir + "square_nut.xml", 100000);
+  EXPECT_EQ(nut.shapes.size(), 5u);
+  EXPECT_NEAR(shapesBounds(nut.shapes, Eigen::Quaterniond::Identity()).horizontalRadius,
+              std::hypot(0.0575, 0.008), 1e-9);
+  const MjcfObject can = loadMjcfObject(dir + "can.xml", 100000);
+  ASSERT_EQ(can.shapes.size(), 1u);  // the label is visual only
+  EXPECT_EQ(can.visualGeoms, 1u);
+  EXPECT_NEAR(can.shapes[0].radius, 0.03, 1e-12);
+}
+
 // In a configuration: robosuite's values come from the sites, the geometry from the geoms.
 TEST(MjcfGeometry, ObjectsInAConfiguration) {
   BuildOptions options;
