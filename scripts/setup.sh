@@ -9,6 +9,8 @@ PS_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # choose from. PLACEMENT_SAMPLERS_BUILD chooses another place.
 PS_BUILD="${PLACEMENT_SAMPLERS_BUILD:-$(dirname "$PS_ROOT")/build_$(basename "$PS_ROOT")}"
 
+# zlib1g-dev: assimp's CMake targets link libz.so without depending on it. libgl-dev,
+# libopengl-dev, libglx-dev: mujoco's CMake config finds OpenGL without depending on it.
 PS_PACKAGES=(
   cmake g++ make catkin ros-core ros-core-dev rosbash
   libroscpp-dev ros-message-generation ros-message-runtime python3-genpy python3-gencpp python3-genmsg
@@ -19,7 +21,7 @@ PS_PACKAGES=(
   liburdf-dev liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev
   libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
   librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev libbenchmark-dev
-  libyaml-cpp-dev zlib1g-dev libmujoco-dev catkin-lint
+  libyaml-cpp-dev zlib1g-dev libmujoco-dev libgl-dev libopengl-dev libglx-dev catkin-lint
 )
 
 ps_sudo() {
