@@ -10,7 +10,8 @@ PS_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 PS_BUILD="${PLACEMENT_SAMPLERS_BUILD:-$(dirname "$PS_ROOT")/build_$(basename "$PS_ROOT")}"
 
 # zlib1g-dev: assimp's CMake targets link libz.so without depending on it. libgl-dev,
-# libopengl-dev, libglx-dev: mujoco's CMake config finds OpenGL without depending on it.
+# libopengl-dev, libglx-dev, libqhull-dev: mujoco's CMake config needs OpenGL and qhull's headers
+# without depending on them.
 PS_PACKAGES=(
   cmake g++ make catkin ros-core ros-core-dev rosbash
   libroscpp-dev ros-message-generation ros-message-runtime python3-genpy python3-gencpp python3-genmsg
@@ -21,7 +22,7 @@ PS_PACKAGES=(
   liburdf-dev liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev
   libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
   librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev libbenchmark-dev
-  libyaml-cpp-dev zlib1g-dev libmujoco-dev libgl-dev libopengl-dev libglx-dev catkin-lint
+  libyaml-cpp-dev zlib1g-dev libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev catkin-lint
 )
 
 ps_sudo() {
