@@ -13,6 +13,7 @@
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
+#include "placement_samplers/make_collision_checker.hpp"
 #include "placement_samplers/object_config.hpp"
 #include "placement_samplers/text.hpp"
 #include "parallel.hpp"

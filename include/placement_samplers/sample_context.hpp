@@ -38,7 +38,8 @@ class SampleContext {
   const PlacedEntry* find(const std::string& name) const;
 
   /// @return the index of an entry that @p candidate collides with, or CollisionChecker::kNone
-  std::ptrdiff_t firstCollision(const Candidate& candidate) const {
+  /// Not const: the checker may move its scratch objects (CollisionChecker::firstCollision).
+  std::ptrdiff_t firstCollision(const Candidate& candidate) {
     return checker_.firstCollision(entries_, candidate);
   }
   bool needsOrientation() const { return checker_.needsOrientation(); }

@@ -16,13 +16,10 @@ namespace placement_samplers {
 namespace detail {
 namespace {
 
-/// robosuite's test, written out as radiusOverlap does.
+/// robosuite's scan of every entry in order, with the one definition of the test.
 std::size_t reference(const std::vector<std::vector<double>>& e, const RadiusProbe& p) {
   for (std::size_t i = 0; i < e.size(); ++i) {
-    const double dx = p.x - e[i][0];
-    const double dy = p.y - e[i][1];
-    const double reach = e[i][3] + p.radius;
-    if (dx * dx + dy * dy <= reach * reach && p.z - e[i][2] <= e[i][4] - p.bottom) {
+    if (radiusOverlap(p, e[i][0], e[i][1], e[i][2], e[i][3], e[i][4])) {
       return i;
     }
   }

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/radius_checker.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/uniform_random_sampler.hpp"
 #include "test_helpers.hpp"
