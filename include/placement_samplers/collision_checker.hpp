@@ -55,7 +55,4 @@ class CollisionChecker {
 /// Collision modes of the configuration and of requests.
 enum class CollisionMode { Radius, Fcl, RadiusAndFcl };
 
-/// "radius", "fcl" or "radius_and_fcl".
-const char* collisionModeName(CollisionMode mode);
-
 }  // namespace placement_samplers

@@ -349,11 +349,6 @@ TEST(SequentialCompositeSampler, NestedCompositePassesItsArgsDown) {
   EXPECT_EQ(root.find("root", &found), &root);
   EXPECT_FALSE(found.reference.has_value());
   EXPECT_EQ(root.find("Nope", &found), nullptr);
-
-  std::vector<const UniformRandomSampler*> uniforms;
-  root.collectUniform(uniforms);
-  ASSERT_EQ(uniforms.size(), 3u);
-  EXPECT_EQ(uniforms[1], cupSampler.get());
 }
 
 TEST(SequentialCompositeSampler, FailureStopsTheSequence) {
