@@ -568,8 +568,8 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
     builder.hide(*n);
   }
   builder.warnUnplaced();
-  // Fails now rather than on the first request when the mode is not built in.
-  makeCollisionChecker(config->collisionCheck, config->collisionMargin);
+  // Fails now rather than on the first request.
+  checkCollisionMode(config->collisionCheck, config->collisionMargin);
   return config;
 }
 

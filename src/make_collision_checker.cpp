@@ -10,13 +10,17 @@
 
 namespace placement_samplers {
 
-std::unique_ptr<CollisionChecker> makeCollisionChecker(CollisionMode mode, double margin) {
-  if (mode == CollisionMode::Radius) {
-    return std::make_unique<RadiusChecker>();
-  }
-  if (!std::isfinite(margin) || margin < 0.0) {
+void checkCollisionMode(CollisionMode mode, double margin) {
+  if (mode != CollisionMode::Radius && (!std::isfinite(margin) || margin < 0.0)) {
     throw ConfigError("collision_margin must be finite and non-negative, got " +
                       std::to_string(margin));
+  }
+}
+
+std::unique_ptr<CollisionChecker> makeCollisionChecker(CollisionMode mode, double margin) {
+  checkCollisionMode(mode, margin);
+  if (mode == CollisionMode::Radius) {
+    return std::make_unique<RadiusChecker>();
   }
   if (mode == CollisionMode::Fcl) {
     return std::make_unique<FclChecker>(margin);

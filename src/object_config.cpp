@@ -8,6 +8,7 @@
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
 #include "placement_samplers/text.hpp"
+#include "placement_samplers/unit_quaternion.hpp"
 #include "placement_samplers/urdf_geometry.hpp"
 
 namespace placement_samplers {
@@ -185,7 +186,7 @@ Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader
 Eigen::Quaterniond parseQuaternion(const ConfigNode& node) {
   const std::vector<double> v = node.asNumbers(4);
   const Eigen::Quaterniond q(v[3], v[0], v[1], v[2]);
-  if (std::abs(q.norm() - 1.0) > 1e-3) {
+  if (!isUnitQuaternion(q)) {
     std::ostringstream out;
     out << "expected a unit quaternion [x, y, z, w], got one of norm " << q.norm();
     node.fail(out.str());
