@@ -199,12 +199,12 @@ void validateShape(const Shape& shape) {
     if (!std::isfinite(v) || v <= 0.0) {
       std::ostringstream out;
       out << what << " must be finite and positive, got " << v;
-      throw std::invalid_argument(out.str());
+      throw ConfigError(out.str());
     }
     if (v > limits::kCoordinate) {
       std::ostringstream out;
       out << what << " must be at most " << limits::kCoordinate << " m, got " << v;
-      throw std::invalid_argument(out.str());
+      throw ConfigError(out.str());
     }
   };
   switch (shape.type) {
@@ -223,7 +223,7 @@ void validateShape(const Shape& shape) {
       break;
     case ShapeType::Mesh:
       if (!shape.mesh || shape.mesh->vertices.empty()) {
-        throw std::invalid_argument("mesh has no vertices");
+        throw ConfigError("mesh has no vertices");
       }
       break;
   }

@@ -200,7 +200,7 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
       }
       try {
         validateShape(*f.shape);
-      } catch (const std::invalid_argument& e) {
+      } catch (const ConfigError& e) {
         throw RequestError(label + ": " + e.what());
       }
       spec.object = std::make_shared<ObjectModel>(makeObject(f.name, {*f.shape}, spec.orientation));
