@@ -15,11 +15,12 @@ PS_PACKAGES=(
   libstd-msgs-dev ros-std-msgs libgeometry-msgs-dev ros-geometry-msgs
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs
   libshape-msgs-dev ros-shape-msgs libstd-srvs-dev ros-std-srvs
-  libtf2-dev libtf2-ros-dev libtf2-eigen-dev python3-tf2-ros tf2-tools
-  liburdf-dev liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev
-  libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
-  librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev libbenchmark-dev
-  libyaml-cpp-dev zlib1g-dev catkin-lint
+  libtf2-dev libtf2-ros-dev python3-tf2-ros tf2-tools
+  liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev libassimp-dev
+  librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev
+  libyaml-cpp-dev catkin-lint
+  # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it.
+  zlib1g-dev
 )
 
 ps_sudo() {
