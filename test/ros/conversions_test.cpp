@@ -85,8 +85,3 @@ TEST(Conversions, PosesKeepEveryComponent) {
 }  // namespace
 }  // namespace ros_interface
 }  // namespace placement_samplers
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
