@@ -9,20 +9,21 @@ PS_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # choose from. PLACEMENT_SAMPLERS_BUILD chooses another place.
 PS_BUILD="${PLACEMENT_SAMPLERS_BUILD:-$(dirname "$PS_ROOT")/build_$(basename "$PS_ROOT")}"
 
-# zlib1g-dev: assimp's CMake targets link libz.so without depending on it. libgl-dev,
-# libopengl-dev, libglx-dev, libqhull-dev: mujoco's CMake config needs OpenGL and qhull's headers
-# without depending on them.
 PS_PACKAGES=(
   cmake g++ make catkin ros-core ros-core-dev rosbash
   libroscpp-dev ros-message-generation ros-message-runtime python3-genpy python3-gencpp python3-genmsg
   libstd-msgs-dev ros-std-msgs libgeometry-msgs-dev ros-geometry-msgs
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs
   libshape-msgs-dev ros-shape-msgs libstd-srvs-dev ros-std-srvs
-  libtf2-dev libtf2-ros-dev libtf2-eigen-dev python3-tf2-ros tf2-tools
-  liburdf-dev liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev
-  libgeometric-shapes-dev libresource-retriever-dev libassimp-dev
-  librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev libbenchmark-dev
-  libyaml-cpp-dev zlib1g-dev libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev catkin-lint
+  libtf2-dev libtf2-ros-dev python3-tf2-ros tf2-tools
+  liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev libassimp-dev
+  librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev
+  libyaml-cpp-dev catkin-lint
+  # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it.
+  zlib1g-dev
+  # MuJoCo reads MJCF objects; its CMake config needs OpenGL's and qhull's development files
+  # without depending on them (a fresh Debian 12 failed at configure).
+  libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev
 )
 
 ps_sudo() {

@@ -9,6 +9,7 @@
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
+#include "placement_samplers/make_collision_checker.hpp"
 #include "placement_samplers/object_config.hpp"
 #include "placement_samplers/text.hpp"
 #include "placement_samplers/uniform_random_sampler.hpp"
@@ -567,8 +568,8 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
     builder.hide(*n);
   }
   builder.warnUnplaced();
-  // Fails now rather than on the first request when the mode is not built in.
-  makeCollisionChecker(config->collisionCheck, config->collisionMargin);
+  // Fails now rather than on the first request.
+  checkCollisionMode(config->collisionCheck, config->collisionMargin);
   return config;
 }
 

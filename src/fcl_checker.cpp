@@ -1,15 +1,5 @@
 #include "placement_samplers/fcl_checker.hpp"
 
-#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
-#include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/geometry/shape/box.h>
-#include <fcl/geometry/shape/capsule.h>
-#include <fcl/geometry/shape/cylinder.h>
-#include <fcl/geometry/shape/sphere.h>
-#include <fcl/math/bv/OBBRSS.h>
-#include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/distance.h>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -18,36 +8,14 @@
 #include <unordered_map>
 #include <utility>
 
+#include "fcl_compat.hpp"
 #include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 namespace {
 
-using Geometry = fcl::CollisionGeometryd;
-using GeometryPtr = std::shared_ptr<Geometry>;
-
-/// An FCL object that shares its geometry without writing to it, and keeps a tight world box.
-/// FCL's own constructor recomputes the geometry's local box (a write to geometry other threads
-/// may be reading) and its computeAABB() bounds a rotated object by a cube around its bounding
-/// sphere, loose for long objects.
-class Body : public fcl::CollisionObjectd {
- public:
-  explicit Body(const GeometryPtr& geometry) : fcl::CollisionObjectd(GeometryPtr()) {
-    cgeom = geometry;
-    cgeom_const = geometry;
-  }
-
-  /// Moves the body to @p pose and bounds it, widened by @p grow [m] on every side.
-  void place(const Eigen::Isometry3d& pose, double grow) {
-    t = pose;
-    const fcl::AABBd& local = cgeom->aabb_local;
-    const Eigen::Vector3d centre = pose * local.center();
-    const Eigen::Vector3d half = pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) +
-                                 Eigen::Vector3d::Constant(grow);
-    aabb.min_ = centre - half;
-    aabb.max_ = centre + half;
-  }
-};
+using fcl_compat::Body;
+using fcl_compat::GeometryPtr;
 
 /// BVHs of meshes, built once per Mesh for the whole process and shared by every checker:
 /// FCL only reads an OBBRSS model during queries. Keyed by address, checked through a weak
@@ -63,9 +31,9 @@ class MeshGeometryCache {
     for (auto e = entries_.begin(); e != entries_.end();) {
       e = e->second.first.expired() ? entries_.erase(e) : std::next(e);
     }
-    auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-    std::vector<fcl::Vector3d> vertices(mesh->vertices.begin(), mesh->vertices.end());
-    std::vector<fcl::Triangle> triangles;
+    auto model = std::make_shared<fcl_compat::MeshModel>();
+    std::vector<fcl_compat::Vector3> vertices(mesh->vertices.begin(), mesh->vertices.end());
+    std::vector<fcl_compat::Triangle> triangles;
     triangles.reserve(mesh->triangles.size());
     for (const Eigen::Vector3i& t : mesh->triangles) {
       triangles.emplace_back(t[0], t[1], t[2]);
@@ -95,16 +63,16 @@ GeometryPtr makeGeometry(const Shape& shape) {
   GeometryPtr g;
   switch (shape.type) {
     case ShapeType::Box:
-      g = std::make_shared<fcl::Boxd>(shape.size);
+      g = std::make_shared<fcl_compat::Box>(shape.size);
       break;
     case ShapeType::Cylinder:  // FCL: axis z, centred, lz = full length, as Shape
-      g = std::make_shared<fcl::Cylinderd>(shape.radius, shape.length);
+      g = std::make_shared<fcl_compat::Cylinder>(shape.radius, shape.length);
       break;
     case ShapeType::Sphere:
-      g = std::make_shared<fcl::Sphered>(shape.radius);
+      g = std::make_shared<fcl_compat::Sphere>(shape.radius);
       break;
     case ShapeType::Capsule:  // FCL: lz = distance between the cap centres, as Shape
-      g = std::make_shared<fcl::Capsuled>(shape.radius, shape.length);
+      g = std::make_shared<fcl_compat::Capsule>(shape.radius, shape.length);
       break;
     case ShapeType::Mesh:
       if (!shape.mesh || shape.mesh->triangles.empty()) {
@@ -145,7 +113,7 @@ struct FclChecker::Impl {
   };
 
   struct Query {
-    const Impl* impl;
+    Impl* impl;
     const Instance* candidate;
     std::ptrdiff_t hit;
   };
@@ -195,7 +163,7 @@ struct FclChecker::Impl {
         manager->collide(body.get(), &query, &Impl::onPair);
       } else {
         // In entry order, boxes first: for a few bodies cheaper than the tree.
-        const fcl::AABBd& box = body->getAABB();
+        const fcl_compat::Aabb& box = body->getAABB();
         for (Body* other : bodies) {
           if (box.overlap(other->getAABB()) && onPair(body.get(), other, &query)) {
             break;
@@ -231,7 +199,7 @@ struct FclChecker::Impl {
   }
 
   /// True when the two bodies come closer than the margin (penetrate, with a zero margin).
-  bool tooClose(const Body& a, const Body& b) const {
+  bool tooClose(const Body& a, const Body& b) {
     result.clear();
     fcl::collide(&a, &b, boolRequest, result);
     if (result.isCollision()) {
@@ -253,7 +221,7 @@ struct FclChecker::Impl {
     return distance.min_distance < threshold;
   }
 
-  static bool onPair(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
+  static bool onPair(fcl_compat::CollisionObject* a, fcl_compat::CollisionObject* b, void* data) {
     Query& query = *static_cast<Query*>(data);
     const bool aIsCandidate = a->getUserData() == query.candidate;
     const Body& mine = static_cast<const Body&>(aIsCandidate ? *a : *b);
@@ -281,13 +249,12 @@ struct FclChecker::Impl {
   std::vector<Body*> bodies;  ///< placed bodies of the scene, in entry order
   bool treeMode = false;      ///< bodies are in the manager too
   std::size_t listLimit = kDefaultListLimit;
-  std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager =
-      std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
-  fcl::CollisionRequestd boolRequest;
-  fcl::CollisionRequestd depthRequest;
-  fcl::DistanceRequestd distanceRequest;
-  mutable fcl::CollisionResultd result;
-  mutable fcl::DistanceResultd distance;
+  std::unique_ptr<fcl_compat::TreeManager> manager = std::make_unique<fcl_compat::TreeManager>();
+  fcl_compat::CollisionRequest boolRequest;
+  fcl_compat::CollisionRequest depthRequest;
+  fcl_compat::DistanceRequest distanceRequest;
+  fcl_compat::CollisionResult result;   ///< scratch of tooClose()
+  fcl_compat::DistanceResult distance;  ///< scratch of tooClose()
 };
 
 FclChecker::FclChecker(double margin, std::size_t listLimit) {
@@ -330,7 +297,7 @@ void FclChecker::added(const std::vector<PlacedEntry>& entries, std::size_t inde
 }
 
 std::ptrdiff_t FclChecker::firstCollision(const std::vector<PlacedEntry>& /*entries*/,
-                                          const Candidate& candidate) const {
+                                          const Candidate& candidate) {
   if (impl_->bodies.empty()) {
     return kNone;
   }
@@ -340,34 +307,6 @@ std::ptrdiff_t FclChecker::firstCollision(const std::vector<PlacedEntry>& /*entr
   Impl::Query query{impl_.get(), &g.candidate, kNone};
   impl_->collide(g.candidate, query);
   return query.hit;
-}
-
-CombinedChecker::CombinedChecker(std::unique_ptr<CollisionChecker> first,
-                                 std::unique_ptr<CollisionChecker> second)
-    : first_(std::move(first)), second_(std::move(second)) {
-  if (!first_ || !second_) {
-    throw std::invalid_argument("CombinedChecker needs two checkers");
-  }
-}
-
-void CombinedChecker::clear() {
-  first_->clear();
-  second_->clear();
-}
-
-void CombinedChecker::added(const std::vector<PlacedEntry>& entries, std::size_t index) {
-  first_->added(entries, index);
-  second_->added(entries, index);
-}
-
-std::ptrdiff_t CombinedChecker::firstCollision(const std::vector<PlacedEntry>& entries,
-                                               const Candidate& candidate) const {
-  const std::ptrdiff_t hit = first_->firstCollision(entries, candidate);
-  return hit != kNone ? hit : second_->firstCollision(entries, candidate);
-}
-
-bool CombinedChecker::needsOrientation() const {
-  return first_->needsOrientation() || second_->needsOrientation();
 }
 
 }  // namespace placement_samplers

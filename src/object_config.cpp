@@ -9,6 +9,7 @@
 #include "placement_samplers/limits.hpp"
 #include "placement_samplers/mjcf_geometry.hpp"
 #include "placement_samplers/text.hpp"
+#include "placement_samplers/unit_quaternion.hpp"
 #include "placement_samplers/urdf_geometry.hpp"
 
 namespace placement_samplers {
@@ -254,7 +255,7 @@ std::vector<Shape> parseComposite(const std::string& name, const ConfigNode& nod
 Eigen::Quaterniond parseQuaternion(const ConfigNode& node) {
   const std::vector<double> v = node.asNumbers(4);
   const Eigen::Quaterniond q(v[3], v[0], v[1], v[2]);
-  if (std::abs(q.norm() - 1.0) > 1e-3) {
+  if (!isUnitQuaternion(q)) {
     std::ostringstream out;
     out << "expected a unit quaternion [x, y, z, w], got one of norm " << q.norm();
     node.fail(out.str());
@@ -267,12 +268,12 @@ void validateShape(const Shape& shape) {
     if (!std::isfinite(v) || v <= 0.0) {
       std::ostringstream out;
       out << what << " must be finite and positive, got " << v;
-      throw std::invalid_argument(out.str());
+      throw ConfigError(out.str());
     }
     if (v > limits::kCoordinate) {
       std::ostringstream out;
       out << what << " must be at most " << limits::kCoordinate << " m, got " << v;
-      throw std::invalid_argument(out.str());
+      throw ConfigError(out.str());
     }
   };
   switch (shape.type) {
@@ -291,7 +292,7 @@ void validateShape(const Shape& shape) {
       break;
     case ShapeType::Mesh:
       if (!shape.mesh || shape.mesh->vertices.empty()) {
-        throw std::invalid_argument("mesh has no vertices");
+        throw ConfigError("mesh has no vertices");
       }
       break;
   }

@@ -1,9 +1,5 @@
 #include "placement_samplers/placement_sampler.hpp"
 
-#include <sstream>
-
-#include "placement_samplers/text.hpp"
-
 namespace placement_samplers {
 
 Reference Reference::named(const std::string& name) {
@@ -18,21 +14,6 @@ Reference Reference::at(const Eigen::Vector3d& point) {
   r.kind = Kind::Point;
   r.point = point;
   return r;
-}
-
-std::string Reference::describe() const {
-  switch (kind) {
-    case Kind::Default:
-      return "reference_pos";
-    case Kind::Name:
-      return quoteText(name);
-    case Kind::Point: {
-      std::ostringstream out;
-      out << "[" << point.x() << ", " << point.y() << ", " << point.z() << "]";
-      return out.str();
-    }
-  }
-  return "";
 }
 
 PlacementSampler::PlacementSampler(std::string name) : name_(std::move(name)) {}

@@ -11,11 +11,12 @@
 #define PLACEMENT_SAMPLERS_X86 1
 #endif
 
-// Every kernel evaluates, per entry and in this order,
+// Every kernel evaluates, per entry and in this order, the operations of radiusOverlap()
+// (radius_test.hpp, the one definition of robosuite's test):
 //   (dx * dx + dy * dy <= reach * reach) & (p.z - z <= top - p.bottom)
-// with dx = p.x - x, dy = p.y - y, reach = radius + p.radius: the operations of radiusOverlap,
-// so that all kernels give the same answer bit for bit. The library is compiled with
-// -ffp-contract=off, so no kernel fuses a multiply and an add.
+// with dx = p.x - x, dy = p.y - y, reach = radius + p.radius, so that all kernels give the same
+// answer bit for bit (radius_scan_test.cpp compares them with radiusOverlap()). The library is
+// compiled with -ffp-contract=off, so no kernel fuses a multiply and an add.
 
 namespace placement_samplers {
 namespace detail {

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "radius_test.hpp"
+
 namespace placement_samplers {
 namespace detail {
 
@@ -30,19 +32,12 @@ class RadiusColumns {
   std::vector<double> x_, y_, z_, radius_, top_;
 };
 
-/// The candidate's values: position [m], horizontal radius [m], bottom offset z [m].
-struct RadiusProbe {
-  double x, y, z, radius, bottom;
-};
-
-/// The scalar kernel, inline: the lowest index whose entry overlaps @p p, or columns.size().
+/// The scalar kernel, inline: the lowest index whose entry overlaps @p p under
+/// radiusOverlap() (radius_test.hpp), or columns.size().
 inline std::size_t firstOverlapInline(const RadiusColumns& c, const RadiusProbe& p) {
   const std::size_t n = c.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const double dx = p.x - c.x()[i];
-    const double dy = p.y - c.y()[i];
-    const double reach = c.radius()[i] + p.radius;
-    if ((dx * dx + dy * dy <= reach * reach) & (p.z - c.z()[i] <= c.top()[i] - p.bottom)) {
+    if (radiusOverlap(p, c.x()[i], c.y()[i], c.z()[i], c.radius()[i], c.top()[i])) {
       return i;
     }
   }

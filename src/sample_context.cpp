@@ -21,14 +21,6 @@ void SampleContext::addFixture(std::string_view name, const ObjectModel* object,
   checker_.added(entries_, entries_.size() - 1);
 }
 
-void SampleContext::addPlacement(ObjectPlacement placement) {
-  // The entry names the object: placement.name moves with the placements' buffer.
-  entries_.push_back(PlacedEntry{placement.object->name, placement.object, placement.position,
-                                 placement.orientation, false});
-  checker_.added(entries_, entries_.size() - 1);
-  placements_.push_back(std::move(placement));
-}
-
 void SampleContext::addPlacement(std::string_view sampler, const Candidate& candidate,
                                  std::uint32_t attempts, bool hidden) {
   // Built whole rather than default-constructed and assigned: the default construction zeroed

@@ -13,8 +13,10 @@
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
+#include "placement_samplers/make_collision_checker.hpp"
 #include "placement_samplers/object_config.hpp"
 #include "placement_samplers/text.hpp"
+#include "placement_samplers/unit_quaternion.hpp"
 #include "parallel.hpp"
 
 namespace placement_samplers {
@@ -83,10 +85,6 @@ SceneGenerator::SceneGenerator(std::shared_ptr<const SceneConfig> config)
 
 namespace {
 
-bool isUnit(const Eigen::Quaterniond& q) {
-  return q.coeffs().allFinite() && std::abs(q.norm() - 1.0) <= 1e-3;
-}
-
 /// Finite and within +-limits::kCoordinate: sums of such values stay finite.
 bool isBounded(const Eigen::Vector3d& v) {
   return v.allFinite() && (v.array().abs() <= limits::kCoordinate).all();
@@ -147,7 +145,7 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
                        std::to_string(config.maxFixturesPerRequest) + ")");
   }
   try {
-    makeCollisionChecker(prepared.collisionCheck, config.collisionMargin);
+    checkCollisionMode(prepared.collisionCheck, config.collisionMargin);
   } catch (const ConfigError& e) {
     throw RequestError(e.what());
   }
@@ -182,7 +180,7 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
     if (!isBounded(f.position)) {
       throw RequestError(label + ": position must be " + coordinateLimit());
     }
-    if (!isUnit(f.orientation)) {
+    if (!isUnitQuaternion(f.orientation)) {
       throw RequestError(label + ": orientation must be a finite unit quaternion");
     }
     FixtureSpec spec;
@@ -202,7 +200,7 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
       }
       try {
         validateShape(*f.shape);
-      } catch (const std::invalid_argument& e) {
+      } catch (const ConfigError& e) {
         throw RequestError(label + ": " + e.what());
       }
       spec.object = std::make_shared<ObjectModel>(makeObject(f.name, {*f.shape}, spec.orientation));

@@ -199,12 +199,6 @@ void appendJsonString(std::string& out, std::string_view text) {
   out += '"';
 }
 
-std::string jsonString(const std::string& text) {
-  std::string out;
-  appendJsonString(out, text);
-  return out;
-}
-
 void appendSceneJson(std::string& out, const SceneResult& scene) {
   out += "{\"scene\": ";
   appendInteger(out, scene.index);

@@ -113,13 +113,6 @@ void SequentialCompositeSampler::reset() {
   objectNames_.clear();
 }
 
-void SequentialCompositeSampler::collectUniform(
-    std::vector<const UniformRandomSampler*>& out) const {
-  for (const Child& child : children_) {
-    child.sampler->collectUniform(out);
-  }
-}
-
 void SequentialCompositeSampler::collectSamplers(std::vector<const PlacementSampler*>& out) const {
   out.push_back(this);
   for (const Child& child : children_) {

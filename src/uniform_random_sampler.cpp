@@ -144,10 +144,6 @@ std::vector<ObjectPtr> UniformRandomSampler::objects() const {
 
 void UniformRandomSampler::reset() { entries_.clear(); }
 
-void UniformRandomSampler::collectUniform(std::vector<const UniformRandomSampler*>& out) const {
-  out.push_back(this);
-}
-
 Eigen::Quaterniond UniformRandomSampler::sampleOrientation(Engine& engine,
                                                            const ObjectModel& object) const {
   double angle = params_.rotation.low;

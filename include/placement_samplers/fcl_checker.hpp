@@ -48,9 +48,10 @@ class FclChecker : public CollisionChecker {
 
   void clear() override;
   void added(const std::vector<PlacedEntry>& entries, std::size_t index) override;
+  /// Moves this checker's FCL objects of the candidate's object to the candidate pose.
   /// @return the index of an entry that @p candidate comes too close to, or kNone
   std::ptrdiff_t firstCollision(const std::vector<PlacedEntry>& entries,
-                                const Candidate& candidate) const override;
+                                const Candidate& candidate) override;
   bool needsOrientation() const override { return true; }
 
   double margin() const;
@@ -58,24 +59,6 @@ class FclChecker : public CollisionChecker {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-};
-
-/// Both tests must pass (`radius_and_fcl`): the first checker's blocker is reported first.
-class CombinedChecker : public CollisionChecker {
- public:
-  /// @throw std::invalid_argument when either checker is null
-  CombinedChecker(std::unique_ptr<CollisionChecker> first,
-                  std::unique_ptr<CollisionChecker> second);
-
-  void clear() override;
-  void added(const std::vector<PlacedEntry>& entries, std::size_t index) override;
-  std::ptrdiff_t firstCollision(const std::vector<PlacedEntry>& entries,
-                                const Candidate& candidate) const override;
-  bool needsOrientation() const override;
-
- private:
-  std::unique_ptr<CollisionChecker> first_;
-  std::unique_ptr<CollisionChecker> second_;
 };
 
 }  // namespace placement_samplers

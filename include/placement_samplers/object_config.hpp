@@ -39,12 +39,12 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
 /// @throw ConfigError as above
 ObjectModel parseObject(const std::string& name, const ConfigNode& node);
 
-/// A unit quaternion from [x, y, z, w]; its norm must be 1 within 1e-3, and it is normalized.
+/// A unit quaternion from [x, y, z, w] (isUnitQuaternion()), normalized.
 /// @throw ConfigError naming @p node otherwise
 Eigen::Quaterniond parseQuaternion(const ConfigNode& node);
 
-/// Checks a primitive's sizes: finite and positive.
-/// @throw std::invalid_argument saying which size is wrong
+/// Checks a primitive's sizes [m]: finite, positive and at most limits::kCoordinate.
+/// @throw ConfigError saying which size is wrong
 void validateShape(const Shape& shape);
 
 }  // namespace placement_samplers

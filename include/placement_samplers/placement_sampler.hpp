@@ -22,8 +22,6 @@ struct Reference {
   static Reference byDefault() { return Reference(); }
   static Reference named(const std::string& name);
   static Reference at(const Eigen::Vector3d& point);
-  /// For messages: "reference_pos", "'table'" or "[x, y, z]".
-  std::string describe() const;
 };
 
 /// robosuite's sample_args: the reference and on_top a composite passes to one sub-sampler.
@@ -32,8 +30,6 @@ struct SampleArgs {
   std::optional<Reference> reference;
   std::optional<bool> onTop;
 };
-
-class UniformRandomSampler;
 
 /// Base of the samplers: a name, and sample() over a context.
 class PlacementSampler {
@@ -54,8 +50,6 @@ class PlacementSampler {
   virtual std::vector<ObjectPtr> objects() const = 0;
   /// Removes every object (robosuite's reset()).
   virtual void reset() = 0;
-  /// Every uniform sampler in this tree, in sampling order.
-  virtual void collectUniform(std::vector<const UniformRandomSampler*>& out) const = 0;
 
   /// The sampler called @p name in this tree (this one included), or nullptr. @p args receives
   /// the sample_args it gets in a full run: its parent's, completed by those of the composites

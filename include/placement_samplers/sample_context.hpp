@@ -27,10 +27,8 @@ class SampleContext {
   /// @p name must outlive the scene (failure messages read it).
   void addFixture(std::string_view name, const ObjectModel* object, const Eigen::Vector3d& position,
                   const Eigen::Quaterniond& orientation);
-  /// Records a new placement and makes it an obstacle for the following ones.
-  void addPlacement(ObjectPlacement placement);
-  /// The same for @p candidate accepted by sampler @p sampler after @p attempts samples, built
-  /// in place: the samplers' path, without moving strings around.
+  /// Records @p candidate, accepted by sampler @p sampler after @p attempts samples, as a
+  /// placement and makes it an obstacle for the following ones.
   void addPlacement(std::string_view sampler, const Candidate& candidate, std::uint32_t attempts,
                     bool hidden);
 
@@ -38,7 +36,8 @@ class SampleContext {
   const PlacedEntry* find(const std::string& name) const;
 
   /// @return the index of an entry that @p candidate collides with, or CollisionChecker::kNone
-  std::ptrdiff_t firstCollision(const Candidate& candidate) const {
+  /// Not const: the checker may move its scratch objects (CollisionChecker::firstCollision).
+  std::ptrdiff_t firstCollision(const Candidate& candidate) {
     return checker_.firstCollision(entries_, candidate);
   }
   bool needsOrientation() const { return checker_.needsOrientation(); }

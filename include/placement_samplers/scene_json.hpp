@@ -28,10 +28,7 @@ void appendSceneJson(std::string& out, const SceneResult& scene);
 /// hold "reference" (a name or [x, y, z]) and "on_top" when set.
 std::string configToJson(const SceneConfig& config);
 
-/// @p text as a JSON string literal, quotes included.
-std::string jsonString(const std::string& text);
-
-/// jsonString(), appended to @p out.
+/// @p text as a JSON string literal, quotes included, appended to @p out.
 void appendJsonString(std::string& out, std::string_view text);
 
 }  // namespace placement_samplers

@@ -8,8 +8,6 @@
 
 namespace placement_samplers {
 
-class UniformRandomSampler;
-
 /// robosuite's SequentialCompositeSampler: sub-samplers run in order, each seeing what the
 /// earlier ones placed, so later objects can be placed on or around earlier ones.
 ///
@@ -27,7 +25,8 @@ class SequentialCompositeSampler : public PlacementSampler {
   /// @throw ConfigError when its name is taken in this tree or one of its objects is here
   void appendSampler(SamplerPtr sampler, SampleArgs args = SampleArgs());
 
-  /// Adds @p objects to the uniform sub-sampler @p samplerName (searched in the whole tree).
+  /// Adds @p objects to the uniform sub-sampler @p samplerName (searched in the whole tree), as
+  /// robosuite's add_objects_to_sampler(): API for code that builds samplers like robosuite.
   /// @throw ConfigError when there is no such uniform sampler or an object is already here
   void addObjectsToSampler(const std::string& samplerName, const std::vector<ObjectPtr>& objects);
 
@@ -40,7 +39,6 @@ class SequentialCompositeSampler : public PlacementSampler {
   std::vector<ObjectPtr> objects() const override;
   /// Removes every object from every sub-sampler; the sub-samplers stay.
   void reset() override;
-  void collectUniform(std::vector<const UniformRandomSampler*>& out) const override;
   const PlacementSampler* find(const std::string& name, SampleArgs* args) const override;
   void collectSamplers(std::vector<const PlacementSampler*>& out) const override;
 

@@ -53,7 +53,6 @@ class UniformRandomSampler : public PlacementSampler {
   bool sample(SampleContext& context, const Reference& reference, bool onTop) const override;
   std::vector<ObjectPtr> objects() const override;
   void reset() override;
-  void collectUniform(std::vector<const UniformRandomSampler*>& out) const override;
 
   const UniformSamplerParams& params() const { return params_; }
 

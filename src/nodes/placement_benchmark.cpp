@@ -20,6 +20,8 @@
 #include <Eigen/Geometry>
 
 #include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/make_collision_checker.hpp"
+#include "placement_samplers/radius_checker.hpp"
 #include "placement_samplers/config_builder.hpp"
 #include "placement_samplers/config_node.hpp"
 #include "placement_samplers/errors.hpp"
@@ -106,7 +108,7 @@ class ScanChecker : public ps::CollisionChecker {
   void clear() override {}
   void added(const std::vector<ps::PlacedEntry>&, std::size_t) override {}
   std::ptrdiff_t firstCollision(const std::vector<ps::PlacedEntry>& entries,
-                                const ps::Candidate& candidate) const override {
+                                const ps::Candidate& candidate) override {
     for (std::size_t i = 0; i < entries.size(); ++i) {
       if (ps::radiusOverlap(entries[i], candidate)) {
         return static_cast<std::ptrdiff_t>(i);
@@ -162,6 +164,7 @@ class SceneLoop {
   }
 
   const ps::SampleContext& context() const { return context_; }
+  ps::SampleContext& context() { return context_; }
   ps::Engine& engine() { return engine_; }
 
  private:

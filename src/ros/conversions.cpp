@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/unit_quaternion.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {
@@ -23,7 +24,7 @@ geometry_msgs::Pose toPoseMsg(const Eigen::Vector3d& position,
 
 Eigen::Quaterniond fromQuaternionMsg(const geometry_msgs::Quaternion& q, const std::string& field) {
   const Eigen::Quaterniond out(q.w, q.x, q.y, q.z);
-  if (!out.coeffs().allFinite() || std::abs(out.norm() - 1.0) > 1e-3) {
+  if (!isUnitQuaternion(out)) {
     std::ostringstream text;
     text << field << " must be a unit quaternion, got (x " << q.x << ", y " << q.y << ", z " << q.z
          << ", w " << q.w << ")";

@@ -15,6 +15,9 @@
 #include <vector>
 
 #include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/combined_checker.hpp"
+#include "placement_samplers/make_collision_checker.hpp"
+#include "placement_samplers/radius_checker.hpp"
 #include "placement_samplers/config_builder.hpp"
 #include "placement_samplers/config_node.hpp"
 #include "placement_samplers/errors.hpp"

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/radius_checker.hpp"
 #include "placement_samplers/random.hpp"
 #include "placement_samplers/sample_context.hpp"
 #include "placement_samplers/scene_generator.hpp"

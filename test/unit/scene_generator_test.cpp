@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/radius_checker.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/scene_generator.hpp"
 #include "test_helpers.hpp"

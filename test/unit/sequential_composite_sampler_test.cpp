@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/radius_checker.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/sequential_composite_sampler.hpp"
 #include "placement_samplers/uniform_random_sampler.hpp"
@@ -349,11 +349,6 @@ TEST(SequentialCompositeSampler, NestedCompositePassesItsArgsDown) {
   EXPECT_EQ(root.find("root", &found), &root);
   EXPECT_FALSE(found.reference.has_value());
   EXPECT_EQ(root.find("Nope", &found), nullptr);
-
-  std::vector<const UniformRandomSampler*> uniforms;
-  root.collectUniform(uniforms);
-  ASSERT_EQ(uniforms.size(), 3u);
-  EXPECT_EQ(uniforms[1], cupSampler.get());
 }
 
 TEST(SequentialCompositeSampler, FailureStopsTheSequence) {

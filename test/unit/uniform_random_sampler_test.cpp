@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/radius_checker.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/uniform_random_sampler.hpp"
 #include "test_helpers.hpp"
@@ -369,10 +369,7 @@ TEST(UniformRandomSampler, FailureNamesTheMostFrequentBlocker) {
   TestScene scene(15);
   scene.context.addFixture("post", post.get(), Eigen::Vector3d::Zero(),
                            Eigen::Quaterniond::Identity());
-  ObjectPlacement placed;
-  placed.name = "big";
-  placed.object = big.get();
-  scene.context.addPlacement(placed);
+  scene.context.addPlacement("earlier", Candidate{big.get()}, 1, false);
   EXPECT_FALSE(sampler.sample(scene.context, Reference::byDefault(), true));
   const Failure& f = *scene.context.failure();
   EXPECT_EQ(f.blocker, "big");

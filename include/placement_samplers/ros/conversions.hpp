@@ -21,7 +21,7 @@ geometry_msgs::Pose toPoseMsg(const Eigen::Vector3d& position,
                               const Eigen::Quaterniond& orientation);
 
 /// A unit quaternion from a message.
-/// @throw RequestError naming @p field when it is not finite or not unit (within 1e-3)
+/// @throw RequestError naming @p field when it is not a unit quaternion (isUnitQuaternion())
 Eigen::Quaterniond fromQuaternionMsg(const geometry_msgs::Quaternion& q, const std::string& field);
 
 /// A primitive from shape_msgs/SolidPrimitive (box, sphere, cylinder).

@@ -1,13 +1,29 @@
-#include "placement_samplers/collision_checker.hpp"
+#include "placement_samplers/radius_checker.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 
-#include "placement_samplers/errors.hpp"
-#include "placement_samplers/fcl_checker.hpp"
 #include "radius_scan.hpp"
+#include "radius_test.hpp"
+
+// RadiusChecker answers exactly as robosuite's scan of every entry in order: the same candidates
+// collide and the lowest colliding index comes back, from a packed copy of what the test reads. Up
+// to scanLimit entries it scans that copy (on the machines of docs/benchmarks.md the scan is
+// the faster one below about a hundred entries). Beyond, it looks only near the candidate:
+// entries go into uniform grids, one per power-of-two cell size, each into the grid whose
+// cells are 4 to 8 times its horizontal radius, listed in every cell within half a cell of
+// it, so that a candidate of the entries' size finds all it can touch in its own cell. A
+// larger candidate visits every cell within reach, or scans the grid when that would be more
+// cells than entries (a table-sized object); a grid of a few entries (a table, some plates)
+// is scanned; entries with a non-finite position or a radius of 1e150 m or more are always
+// scanned. The grids wrap around (cell (i, j) uses bucket (i mod 32, j mod 32)), so objects
+// at negative coordinates, far outside the work area or hidden 20 m away need no bounds:
+// the exact test sorts out what shares a bucket.
+//
+// The scan compares blocks of 8 (AVX-512) or 4 (AVX2) entries at once where the CPU has
+// them, with the same operations as the scalar test, so the answers do not depend on the CPU.
 
 namespace placement_samplers {
 
@@ -59,25 +75,19 @@ int cellExponent(double r) {
   return power ? exponent : exponent + 1;
 }
 
-/// The candidate's values the test reads.
-struct Probe {
-  double x, y, z, radius, bottom;
-};
+using detail::RadiusProbe;
 
-inline Probe probeOf(const Candidate& candidate) {
-  return Probe{candidate.position.x(), candidate.position.y(), candidate.position.z(),
-               candidate.object->horizontalRadius, candidate.object->bottomOffset.z()};
+inline RadiusProbe probeOf(const Candidate& candidate) {
+  return RadiusProbe{candidate.position.x(), candidate.position.y(), candidate.position.z(),
+                     candidate.object->horizontalRadius, candidate.object->bottomOffset.z()};
 }
 
 }  // namespace
 
 bool radiusOverlap(const PlacedEntry& other, const Candidate& candidate) {
-  const double dx = candidate.position.x() - other.position.x();
-  const double dy = candidate.position.y() - other.position.y();
-  const double reach = other.object->horizontalRadius + candidate.object->horizontalRadius;
-  return dx * dx + dy * dy <= reach * reach &&
-         candidate.position.z() - other.position.z() <=
-             other.object->topOffset.z() - candidate.object->bottomOffset.z();
+  return detail::radiusOverlap(probeOf(candidate), other.position.x(), other.position.y(),
+                               other.position.z(), other.object->horizontalRadius,
+                               other.object->topOffset.z());
 }
 
 /// What the test reads of an entry, packed: position [m], horizontal radius [m] and top
@@ -89,13 +99,9 @@ struct RadiusChecker::Item {
   double radius;
   double top;
 
-  /// radiusOverlap's expression in its operation order: the answer is the full scan's, bit
-  /// for bit. & rather than &&: both halves are cheap, and one branch less to mispredict.
-  bool overlaps(const Probe& p) const {
-    const double dx = p.x - x;
-    const double dy = p.y - y;
-    const double reach = radius + p.radius;
-    return (dx * dx + dy * dy <= reach * reach) & (p.z - z <= top - p.bottom);
+  /// robosuite's test (detail::radiusOverlap) on this entry.
+  bool overlaps(const RadiusProbe& p) const {
+    return detail::radiusOverlap(p, x, y, z, radius, top);
   }
 };
 
@@ -136,7 +142,7 @@ struct RadiusChecker::Grid {
   std::vector<std::int32_t> tail;     ///< last node of each bucket, -1 = empty
 
   /// Lowest colliding index among the members below @p best, or @p best.
-  std::int32_t scan(const std::vector<Item>& items, const Probe& p, std::int32_t best) const {
+  std::int32_t scan(const std::vector<Item>& items, const RadiusProbe& p, std::int32_t best) const {
     for (const std::int32_t i : members) {
       if (i >= best) {
         break;
@@ -200,7 +206,8 @@ struct RadiusChecker::Grid {
   }
 
   /// Lowest colliding index below @p best, or @p best.
-  std::int32_t query(const std::vector<Item>& items, const Probe& p, std::int32_t best) const {
+  std::int32_t query(const std::vector<Item>& items, const RadiusProbe& p,
+                     std::int32_t best) const {
     if (!bucketed) {
       return scan(items, p, best);
     }
@@ -341,7 +348,7 @@ void RadiusChecker::indexEntry(std::size_t index) {
 }
 
 std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& entries,
-                                             const Candidate& candidate) const {
+                                             const Candidate& candidate) {
   const std::size_t n = columns_->size();
   if (entries.size() != n) {
     // Entries the checker was not told about: robosuite's scan over them.
@@ -352,14 +359,13 @@ std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& ent
     }
     return kNone;
   }
-  const Probe p = probeOf(candidate);
+  const RadiusProbe p = probeOf(candidate);
   if (!gridMode_ || !std::isfinite(p.x) || !std::isfinite(p.y) ||
       !(std::abs(p.radius) < kHugeRadius)) {
     // Few entries, or a candidate no range of cells can bound: the scan, in index order.
-    const detail::RadiusProbe probe{p.x, p.y, p.z, p.radius, p.bottom};
     // A handful is cheaper here than setting up a vector kernel (Stack: one entry).
-    const std::size_t i = n <= kInlineScan ? detail::firstOverlapInline(*columns_, probe)
-                                           : firstOverlap_(*columns_, probe);
+    const std::size_t i =
+        n <= kInlineScan ? detail::firstOverlapInline(*columns_, p) : firstOverlap_(*columns_, p);
     return i < n ? static_cast<std::ptrdiff_t>(i) : kNone;
   }
   const auto none = static_cast<std::int32_t>(n);
@@ -374,33 +380,6 @@ std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& ent
     best = grid->query(items_, p, best);
   }
   return best < none ? static_cast<std::ptrdiff_t>(best) : kNone;
-}
-
-const char* collisionModeName(CollisionMode mode) {
-  switch (mode) {
-    case CollisionMode::Radius:
-      return "radius";
-    case CollisionMode::Fcl:
-      return "fcl";
-    case CollisionMode::RadiusAndFcl:
-      return "radius_and_fcl";
-  }
-  return "unknown";
-}
-
-std::unique_ptr<CollisionChecker> makeCollisionChecker(CollisionMode mode, double margin) {
-  if (mode == CollisionMode::Radius) {
-    return std::make_unique<RadiusChecker>();
-  }
-  if (!std::isfinite(margin) || margin < 0.0) {
-    throw ConfigError("collision_margin must be finite and non-negative, got " +
-                      std::to_string(margin));
-  }
-  if (mode == CollisionMode::Fcl) {
-    return std::make_unique<FclChecker>(margin);
-  }
-  return std::make_unique<CombinedChecker>(std::make_unique<RadiusChecker>(),
-                                           std::make_unique<FclChecker>(margin));
 }
 
 }  // namespace placement_samplers
