@@ -36,18 +36,6 @@ constexpr const char* kTopLevelKeys[] = {"frame_id",
                                          "tf_static",
                                          "tf_rate"};
 
-/// A point [x, y, z] [m] within +-limits::kCoordinate.
-Eigen::Vector3d boundedPoint(const ConfigNode& node) {
-  const Eigen::Vector3d v = node.asVector3();
-  if ((v.array().abs() > limits::kCoordinate).any()) {
-    std::ostringstream out;
-    out << "expected coordinates within [-" << limits::kCoordinate << ", " << limits::kCoordinate
-        << "] m, got [" << v.x() << ", " << v.y() << ", " << v.z() << "]";
-    node.fail(out.str());
-  }
-  return v;
-}
-
 /// Refuses a tree (from rosparam or YAML) of more than limits::kConfigValues values or nested
 /// more than limits::kConfigDepth levels, walking it without recursion.
 void checkTreeSize(const ConfigNode& root) {
@@ -115,7 +103,7 @@ class Builder {
                             " (not under objects)");
       }
       fixtureObjects_.insert(fixture.objectName);
-      fixture.position = boundedPoint(f.at("position"));
+      fixture.position = parseBoundedVector(f.at("position"), "coordinates");
       if (const ConfigNode* q = f.get("orientation")) {
         fixture.orientation = parseQuaternion(*q);
       }
@@ -320,7 +308,7 @@ class Builder {
         args.reference = Reference::named(r->asString());
         referenceNodes_.push_back(r);
       } else if (r->isList()) {
-        args.reference = Reference::at(boundedPoint(*r));
+        args.reference = Reference::at(parseBoundedVector(*r, "coordinates"));
       } else {
         r->fail("expected an object or fixture name, or a point [x, y, z]");
       }

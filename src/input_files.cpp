@@ -104,6 +104,27 @@ int xmlNestingDepth(std::string_view text, int stopAbove) {
     const std::size_t at = text.find(end, from);
     return at == std::string_view::npos ? n : at + end.size();
   };
+  // The first '>' from @p from outside quotes (and, with @p brackets, outside [...]); n when
+  // there is none.
+  const auto tagEnd = [&](std::size_t from, bool brackets) {
+    int level = 0;
+    char quote = 0;
+    for (std::size_t j = from; j < n; ++j) {
+      const char c = text[j];
+      if (quote != 0) {
+        quote = c == quote ? 0 : quote;
+      } else if (c == '"' || c == '\'') {
+        quote = c;
+      } else if (brackets && c == '[') {
+        ++level;
+      } else if (brackets && c == ']') {
+        --level;
+      } else if (c == '>' && level <= 0) {
+        return j;
+      }
+    }
+    return n;
+  };
   while (i < n) {
     const std::size_t open = text.find('<', i);
     if (open == std::string_view::npos || open + 1 >= n) {
@@ -117,41 +138,13 @@ int xmlNestingDepth(std::string_view text, int stopAbove) {
       i = skipPast(open + 2, "?>");
     } else if (text[open + 1] == '!') {
       // <!DOCTYPE ... [ internal subset ] >: ends at the first '>' outside quotes and brackets.
-      std::size_t j = open + 2;
-      int brackets = 0;
-      char quote = 0;
-      for (; j < n; ++j) {
-        const char c = text[j];
-        if (quote != 0) {
-          quote = c == quote ? 0 : quote;
-        } else if (c == '"' || c == '\'') {
-          quote = c;
-        } else if (c == '[') {
-          ++brackets;
-        } else if (c == ']') {
-          --brackets;
-        } else if (c == '>' && brackets <= 0) {
-          break;
-        }
-      }
-      i = j + 1;
+      i = tagEnd(open + 2, true) + 1;
     } else if (text[open + 1] == '/') {
       depth = std::max(0, depth - 1);
       i = skipPast(open + 2, ">");
     } else {
       // A start tag: its end is the first '>' outside quoted attribute values.
-      std::size_t j = open + 1;
-      char quote = 0;
-      for (; j < n; ++j) {
-        const char c = text[j];
-        if (quote != 0) {
-          quote = c == quote ? 0 : quote;
-        } else if (c == '"' || c == '\'') {
-          quote = c;
-        } else if (c == '>') {
-          break;
-        }
-      }
+      const std::size_t j = tagEnd(open + 1, false);
       if (j >= n) {
         break;  // unterminated: the parser refuses it
       }

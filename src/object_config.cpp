@@ -43,18 +43,6 @@ double positive(const ConfigNode& node) {
   return v;
 }
 
-/// A vector [x, y, z] [m] within +-limits::kCoordinate.
-Eigen::Vector3d boundedVector(const ConfigNode& node) {
-  const Eigen::Vector3d v = node.asVector3();
-  if ((v.array().abs() > limits::kCoordinate).any()) {
-    std::ostringstream out;
-    out << "expected values within [-" << limits::kCoordinate << ", " << limits::kCoordinate
-        << "] m, got [" << v.x() << ", " << v.y() << ", " << v.z() << "]";
-    node.fail(out.str());
-  }
-  return v;
-}
-
 /// Why @p shapes under @p orientation reach beyond limits::kCoordinate from the origin (or are
 /// not finite), or "" when they do not: a mesh's vertices, a URDF's joint origins can be
 /// anything, and the derived offsets end up in every pose.
@@ -239,7 +227,7 @@ std::vector<Shape> parseComposite(const std::string& name, const ConfigNode& nod
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
     if (const ConfigNode* p = part.get("position")) {
-      position = boundedVector(*p);
+      position = parseBoundedVector(*p, "values");
     }
     if (const ConfigNode* q = part.get("orientation")) {
       orientation = parseQuaternion(*q);
@@ -251,6 +239,17 @@ std::vector<Shape> parseComposite(const std::string& name, const ConfigNode& nod
 }
 
 }  // namespace
+
+Eigen::Vector3d parseBoundedVector(const ConfigNode& node, const char* what) {
+  const Eigen::Vector3d v = node.asVector3();
+  if ((v.array().abs() > limits::kCoordinate).any()) {
+    std::ostringstream out;
+    out << "expected " << what << " within [-" << limits::kCoordinate << ", " << limits::kCoordinate
+        << "] m, got [" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+    node.fail(out.str());
+  }
+  return v;
+}
 
 Eigen::Quaterniond parseQuaternion(const ConfigNode& node) {
   const std::vector<double> v = node.asNumbers(4);
@@ -350,11 +349,11 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
   }
   if (const ConfigNode* b = node.get("bottom_offset")) {
     overrides.hasBottomOffset = true;
-    overrides.bottomOffset = boundedVector(*b);
+    overrides.bottomOffset = parseBoundedVector(*b, "values");
   }
   if (const ConfigNode* t = node.get("top_offset")) {
     overrides.hasTopOffset = true;
-    overrides.topOffset = boundedVector(*t);
+    overrides.topOffset = parseBoundedVector(*t, "values");
   }
   Eigen::Quaterniond init = Eigen::Quaterniond::Identity();
   if (const ConfigNode* q = node.get("init_orientation")) {

@@ -39,6 +39,11 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
 /// @throw ConfigError as above
 ObjectModel parseObject(const std::string& name, const ConfigNode& node);
 
+/// A vector [x, y, z] [m] within +-limits::kCoordinate (positions, offsets, references).
+/// @param what how the message calls the numbers ("coordinates", "values")
+/// @throw ConfigError naming @p node otherwise
+Eigen::Vector3d parseBoundedVector(const ConfigNode& node, const char* what);
+
 /// A unit quaternion from [x, y, z, w] (isUnitQuaternion()), normalized.
 /// @throw ConfigError naming @p node otherwise
 Eigen::Quaterniond parseQuaternion(const ConfigNode& node);
