@@ -5,6 +5,7 @@
 #include <array>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -101,6 +102,60 @@ Eigen::Vector3d sitePos(const mjModel& m, const char* name, int top) {
   return poseInTop(m, body, top) * Eigen::Vector3d(p[0], p[1], p[2]);
 }
 
+/// An 8 x 8 grey PNG: what every texture file is read as. Textures change no geometry, and
+/// robosuite's files name textures a user may not have (../textures/...).
+constexpr unsigned char kPlaceholderPng[] = {
+    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
+    0x52, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00, 0x08, 0x08, 0x02, 0x00, 0x00, 0x00, 0x4b,
+    0x6d, 0x29, 0xdc, 0x00, 0x00, 0x00, 0x0f, 0x49, 0x44, 0x41, 0x54, 0x78, 0xda, 0x63, 0x68,
+    0xc0, 0x01, 0x18, 0x86, 0x96, 0x04, 0x00, 0x82, 0xf3, 0x60, 0x01, 0x25, 0x95, 0xb3, 0x63,
+    0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+
+struct VfsDeleter {
+  void operator()(mjVFS* vfs) const {
+    mj_deleteVFS(vfs);
+    delete vfs;
+  }
+};
+using VfsPtr = std::unique_ptr<mjVFS, VfsDeleter>;
+
+/// A virtual file system in which every texture file the document names is the placeholder:
+/// MuJoCo looks files up there first, by their name without the path. The `file` attributes of
+/// <texture> elements are found by a scan of the text (not of included files).
+VfsPtr textureVfs(const std::string& text) {
+  VfsPtr vfs(new mjVFS);
+  mj_defaultVFS(vfs.get());
+  std::size_t at = 0;
+  while ((at = text.find("<texture", at)) != std::string::npos) {
+    const std::size_t end = text.find('>', at);
+    const std::string element =
+        text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    at += 8;
+    const std::size_t file = element.find(" file=");
+    if (file == std::string::npos || file + 7 >= element.size()) {
+      continue;
+    }
+    const char quote = element[file + 6];
+    const std::size_t close = element.find(quote, file + 7);
+    if ((quote != '"' && quote != '\'') || close == std::string::npos) {
+      continue;
+    }
+    std::string name = element.substr(file + 7, close - file - 7);
+    name = name.substr(
+        name.find_last_of("/\\") == std::string::npos ? 0 : name.find_last_of("/\\") + 1);
+    if (name.empty() || name.size() >= mjMAXVFSNAME ||
+        mj_findFileVFS(vfs.get(), name.c_str()) >= 0) {
+      continue;
+    }
+    if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(), sizeof(kPlaceholderPng)) != 0) {
+      break;  // full: the remaining textures must exist
+    }
+    const int index = mj_findFileVFS(vfs.get(), name.c_str());
+    std::memcpy(vfs->filedata[index], kPlaceholderPng, sizeof(kPlaceholderPng));
+  }
+  return vfs;
+}
+
 /// The name of the document's root element ("" when there is none): what is after the first
 /// '<' that does not open a declaration, comment or processing instruction.
 std::string rootElement(const std::string& text) {
@@ -154,7 +209,9 @@ MjcfObject loadMjcfObject(const std::string& path, std::size_t maxTriangles) {
     mju_user_warning = ignoreMujocoWarning;
     std::array<char, 1024> error{};
     try {
-      model.reset(mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size())));
+      const VfsPtr textures = textureVfs(text);
+      model.reset(
+          mj_loadXML(path.c_str(), textures.get(), error.data(), static_cast<int>(error.size())));
     } catch (const std::exception& e) {
       std::snprintf(error.data(), error.size(), "%s", e.what());
     }

@@ -78,6 +78,13 @@ TEST(MjcfGeometry, MeshesKeepTheirScaleAndPlace) {
   }
 }
 
+// Textures change no geometry: a texture file that is missing does not stop the load.
+TEST(MjcfGeometry, MissingTexturesDoNotBlockLoading) {
+  const MjcfObject o = loadMjcfObject(kData + "missing_texture.xml", 100000);
+  ASSERT_EQ(o.shapes.size(), 1u);
+  EXPECT_TRUE(o.shapes[0].size.isApprox(Eigen::Vector3d(0.04, 0.04, 0.04)));
+}
+
 TEST(MjcfGeometry, ErrorsNameTheCause) {
   EXPECT_EQ(loadError("no_top_site.xml"),
             "no site 'top_site' (robosuite reads bottom_site, top_site and "
