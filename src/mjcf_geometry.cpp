@@ -81,7 +81,8 @@ Shape meshShape(const mjModel& m, int meshId, const std::string& path, std::size
     const int* t = m.mesh_face + 3 * (firstFace + f);
     mesh->triangles.emplace_back(t[0], t[1], t[2]);
   }
-  mesh->source = path + "#" + nameOf(m, m.name_meshadr[meshId]);
+  mesh->source =
+      (path.empty() ? std::string("mjcf_param") : path) + "#" + nameOf(m, m.name_meshadr[meshId]);
   Shape shape;
   shape.type = ShapeType::Mesh;
   shape.mesh = std::move(mesh);
@@ -183,11 +184,31 @@ std::string rootElement(const std::string& text) {
   return "";
 }
 
+/// Name of the document in MuJoCo's virtual file system when it comes as text.
+constexpr const char* kTextName = "placement_samplers_mjcf_param.xml";
+
+/// Loads @p text; @p path is its file, or "" when the text is all there is (it is then read
+/// from the virtual file system).
+MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_t maxTriangles);
+
 }  // namespace
 
 MjcfObject loadMjcfObject(const std::string& path, std::size_t maxTriangles) {
   // The same limits as a URDF file, checked before MuJoCo's parser recurses over the document.
-  const std::string text = readFileBounded(path, limits::kUrdfBytes, "the MJCF file");
+  return loadMjcf(readFileBounded(path, limits::kUrdfBytes, "the MJCF file"), path, maxTriangles);
+}
+
+MjcfObject loadMjcfText(const std::string& text, std::size_t maxTriangles) {
+  if (text.size() > limits::kUrdfBytes) {
+    throw ConfigError("the MJCF text is larger than the limit of " +
+                      std::to_string(limits::kUrdfBytes) + " bytes");
+  }
+  return loadMjcf(text, "", maxTriangles);
+}
+
+namespace {
+
+MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_t maxTriangles) {
   const int depth = xmlNestingDepth(text, limits::kXmlDepth);
   if (depth > limits::kXmlDepth) {
     throw ConfigError("the MJCF file is nested more than " + std::to_string(limits::kXmlDepth) +
@@ -209,9 +230,17 @@ MjcfObject loadMjcfObject(const std::string& path, std::size_t maxTriangles) {
     mju_user_warning = ignoreMujocoWarning;
     std::array<char, 1024> error{};
     try {
-      const VfsPtr textures = textureVfs(text);
+      const VfsPtr vfs = textureVfs(text);
+      std::string file = path;
+      if (path.empty()) {
+        file = kTextName;
+        if (mj_makeEmptyFileVFS(vfs.get(), kTextName, static_cast<int>(text.size())) != 0) {
+          throw std::runtime_error("too many texture files");
+        }
+        std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kTextName)], text.data(), text.size());
+      }
       model.reset(
-          mj_loadXML(path.c_str(), textures.get(), error.data(), static_cast<int>(error.size())));
+          mj_loadXML(file.c_str(), vfs.get(), error.data(), static_cast<int>(error.size())));
     } catch (const std::exception& e) {
       std::snprintf(error.data(), error.size(), "%s", e.what());
     }
@@ -295,5 +324,7 @@ MjcfObject loadMjcfObject(const std::string& path, std::size_t maxTriangles) {
   }
   return out;
 }
+
+}  // namespace
 
 }  // namespace placement_samplers

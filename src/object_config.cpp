@@ -146,13 +146,35 @@ std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
 }
 
 /// The collision geometry and sites of an `mjcf_file` object (robosuite's MujocoXMLObject).
-MjcfObject parseMjcf(const std::string& name, const ConfigNode& node, MeshLoader& meshes) {
+MjcfObject parseMjcf(const std::string& name, const ConfigNode& node, const BuildOptions& options,
+                     MeshLoader& meshes) {
+  const std::string object = "object " + quoteText(name) + ": ";
+  if (const ConfigNode* param = node.get("mjcf_param")) {
+    std::vector<std::string> keys{"mjcf_param"};
+    keys.insert(keys.end(), kObjectKeys.begin(), kObjectKeys.end());
+    node.checkKeys(keys);
+    const std::string& paramName = param->asString();
+    const std::string label = "mjcf_param " + quoteText(paramName);
+    if (!options.mjcfParam) {
+      param->fail(object + "mjcf_param is only available in the node (use mjcf_file here)");
+    }
+    std::string text;
+    try {
+      text = options.mjcfParam(paramName);
+    } catch (const std::exception& e) {
+      param->fail(object + label + ": " + e.what());
+    }
+    try {
+      return loadMjcfText(text, limits::kMeshTriangles);
+    } catch (const ConfigError& e) {
+      param->fail(object + label + ": " + e.what());
+    }
+  }
   std::vector<std::string> keys{"mjcf_file"};
   keys.insert(keys.end(), kObjectKeys.begin(), kObjectKeys.end());
   node.checkKeys(keys);
   const ConfigNode& file = node.at("mjcf_file");
   const std::string& uri = file.asString();
-  const std::string object = "object " + quoteText(name) + ": ";
   std::string path;
   try {
     path = meshes.resolve(uri);
@@ -310,9 +332,12 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
   }
   std::vector<Shape> shapes;
   ObjectOverrides overrides;
-  if (node.get("mjcf_file") != nullptr) {
+  if (node.get("mjcf_file") != nullptr || node.get("mjcf_param") != nullptr) {
+    if (node.get("mjcf_file") != nullptr && node.get("mjcf_param") != nullptr) {
+      node.fail("give either mjcf_file or mjcf_param, not both");
+    }
     // robosuite's values are the sites' positions: they take the place of derived ones.
-    MjcfObject mjcf = parseMjcf(name, node, meshes);
+    MjcfObject mjcf = parseMjcf(name, node, options, meshes);
     shapes = std::move(mjcf.shapes);
     overrides.hasBottomOffset = overrides.hasTopOffset = overrides.hasHorizontalRadius = true;
     overrides.bottomOffset = mjcf.bottomOffset;

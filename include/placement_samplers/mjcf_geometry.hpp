@@ -30,4 +30,9 @@ struct MjcfObject {
 ///        (robosuite needs all three), an unsupported geom type, a missing mesh, too large
 MjcfObject loadMjcfObject(const std::string& path, std::size_t maxTriangles);
 
+/// loadMjcfObject for MJCF text (the node's `mjcf_param`): the document is given to MuJoCo
+/// through its virtual file system, so meshes and includes need absolute paths.
+/// @throw ConfigError as loadMjcfObject, and for text larger than limits::kUrdfBytes
+MjcfObject loadMjcfText(const std::string& text, std::size_t maxTriangles);
+
 }  // namespace placement_samplers

@@ -15,6 +15,8 @@ struct BuildOptions {
   /// The URDF text of parameter @p name (`urdf_param`); may throw to say it is missing (its
   /// message is kept). Empty = `urdf_param` is refused (the CLI has no parameter server).
   std::function<std::string(const std::string& name)> urdfParam;
+  /// The MJCF text of parameter @p name (`mjcf_param`), as urdfParam.
+  std::function<std::string(const std::string& name)> mjcfParam;
   /// Directory of a ROS package (`package://` URIs); empty = findPackageInRosPackagePath.
   PackageResolver packageResolver;
   /// Relative paths of `urdf_file` and `mesh` are taken relative to it (the configuration

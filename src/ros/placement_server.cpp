@@ -21,14 +21,19 @@ namespace {
 /// server (names resolved as any ROS name: relative to the node's namespace, ~ = private).
 std::shared_ptr<const SceneGenerator> loadGenerator(const ros::NodeHandle& privateHandle) {
   BuildOptions options;
-  options.urdfParam = [](const std::string& name) {
-    std::string text;
-    if (!ros::param::get(name, text)) {
-      throw ConfigError("parameter '" + ros::names::resolve(name) +
-                        "' does not exist or does not hold URDF text");
-    }
-    return text;
+  // urdf_param and mjcf_param: names resolved as any ROS name.
+  const auto textParam = [](const char* what) {
+    return [what](const std::string& name) {
+      std::string text;
+      if (!ros::param::get(name, text)) {
+        throw ConfigError("parameter '" + ros::names::resolve(name) +
+                          "' does not exist or does not hold " + what + " text");
+      }
+      return text;
+    };
   };
+  options.urdfParam = textParam("URDF");
+  options.mjcfParam = textParam("MJCF");
   return std::make_shared<const SceneGenerator>(
       buildSceneConfig(readParameters(privateHandle), options));
 }

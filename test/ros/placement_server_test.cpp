@@ -562,6 +562,51 @@ TEST_F(PlacementServerTest, UrdfParamObject) {
   EXPECT_TRUE(trigger.response.success) << trigger.response.message;
 }
 
+// An MJCF object from a parameter (the .test file loads config/robosuite_objects/can.xml into
+// /can_mjcf), added through a reload: robosuite's values from its sites.
+TEST_F(PlacementServerTest, MjcfParamObject) {
+  ros::NodeHandle nh;
+  XmlRpc::XmlRpcValue objects;
+  ASSERT_TRUE(nh.getParam("/placement_server/objects", objects));
+  const XmlRpc::XmlRpcValue original = objects;
+  objects["param_can"]["mjcf_param"] = "/can_mjcf";
+  nh.setParam("/placement_server/objects", objects);
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+
+  // The can stands on the table's centre as a request fixture; robosuite's test keeps every
+  // object on the table out of its circle (radius 0.03 m from its site).
+  SamplePlacements::Request r = seeded(18);
+  r.dry_run = true;
+  placement_samplers::Fixture can;
+  can.name = "mjcf_can";
+  can.object = "param_can";
+  can.pose.position.z = 0.85;
+  can.pose.orientation.w = 1.0;
+  r.fixtures.push_back(can);
+  r.sampler = "TableSampler";
+  const SamplePlacements srv = call(r);
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  for (const auto& p : srv.response.scenes[0].placements) {
+    // 0.03 m plus the smallest radius of the three (the cube's, 0.0297 m).
+    EXPECT_GT(std::hypot(p.pose.position.x, p.pose.position.y), 0.0597) << p.name;
+  }
+
+  objects["broken"]["mjcf_param"] = "/no_such_mjcf";
+  nh.setParam("/placement_server/objects", objects);
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_FALSE(trigger.response.success);
+  EXPECT_NE(trigger.response.message.find("parameter '/no_such_mjcf' does not exist or does not "
+                                          "hold MJCF text"),
+            std::string::npos)
+      << trigger.response.message;
+
+  nh.setParam("/placement_server/objects", original);
+  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
+  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+}
+
 // Concurrent clients get, for each seed, the answer a lone client gets.
 TEST_F(PlacementServerTest, ConcurrentCallsAreIndependent) {
   std::vector<SamplePlacements> alone;

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "placement_samplers/config_builder.hpp"
@@ -122,6 +124,46 @@ TEST(MjcfGeometry, ShippedExamples) {
   ASSERT_EQ(can.shapes.size(), 1u);  // the label is visual only
   EXPECT_EQ(can.visualGeoms, 1u);
   EXPECT_NEAR(can.shapes[0].radius, 0.03, 1e-12);
+}
+
+// The node's mjcf_param: the same document as text gives the same object.
+TEST(MjcfGeometry, TextGivesWhatTheFileGives) {
+  std::ifstream in(kData + "box_object.xml");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const MjcfObject fromText = loadMjcfText(text, 100000);
+  const MjcfObject fromFile = loadMjcfObject(kData + "box_object.xml", 100000);
+  ASSERT_EQ(fromText.shapes.size(), fromFile.shapes.size());
+  for (std::size_t i = 0; i < fromFile.shapes.size(); ++i) {
+    EXPECT_TRUE(fromText.shapes[i].pose.isApprox(fromFile.shapes[i].pose));
+  }
+  EXPECT_EQ(fromText.topOffset, fromFile.topOffset);
+  EXPECT_EQ(fromText.horizontalRadius, fromFile.horizontalRadius);
+
+  BuildOptions options;
+  options.mjcfParam = [&](const std::string& name) {
+    if (name != "/box_description") {
+      throw ConfigError("no such parameter");
+    }
+    return text;
+  };
+  const auto config = buildSceneConfig(
+      parseYaml("objects:\n  box: {mjcf_param: /box_description}\n", "t.yaml"), options);
+  EXPECT_DOUBLE_EQ(config->findObjectPtr("box")->horizontalRadius, 0.06);
+  const auto error = [&](const std::string& yaml, const BuildOptions& o) {
+    try {
+      buildSceneConfig(parseYaml(yaml, "t.yaml"), o);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no ConfigError");
+  };
+  EXPECT_EQ(error("objects:\n  box: {mjcf_param: /other}\n", options),
+            "objects.box.mjcf_param: object 'box': mjcf_param '/other': no such parameter");
+  EXPECT_EQ(error("objects:\n  box: {mjcf_param: /box_description}\n", BuildOptions()),
+            "objects.box.mjcf_param: object 'box': mjcf_param is only available in the node "
+            "(use mjcf_file here)");
+  EXPECT_EQ(error("objects:\n  box: {mjcf_param: /b, mjcf_file: x.xml}\n", options),
+            "objects.box: give either mjcf_file or mjcf_param, not both");
 }
 
 // In a configuration: robosuite's values come from the sites, the geometry from the geoms.
