@@ -518,29 +518,56 @@ TEST_F(PlacementServerTest, ReloadAcceptsGoodAndRefusesBadConfiguration) {
   EXPECT_TRUE(trigger.response.success) << trigger.response.message;
 }
 
+/// Adds objects to /placement_server/objects and reloads; puts the original back (and reloads)
+/// when it goes out of scope.
+class ObjectParams {
+ public:
+  ObjectParams() { EXPECT_TRUE(nh_.getParam("/placement_server/objects", original_)); }
+  ~ObjectParams() {
+    nh_.setParam("/placement_server/objects", original_);
+    std_srvs::Trigger trigger;
+    EXPECT_TRUE(ros::service::call("/placement_server/reload", trigger));
+    EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+  }
+  /// objects[@p name][@p key] = @p value, then ~reload: its answer.
+  std_srvs::Trigger::Response add(const std::string& name, const std::string& key,
+                                  const std::string& value) {
+    XmlRpc::XmlRpcValue objects;
+    EXPECT_TRUE(nh_.getParam("/placement_server/objects", objects));
+    objects[name][key] = value;
+    nh_.setParam("/placement_server/objects", objects);
+    std_srvs::Trigger trigger;
+    EXPECT_TRUE(ros::service::call("/placement_server/reload", trigger));
+    return trigger.response;
+  }
+
+ private:
+  ros::NodeHandle nh_;
+  XmlRpc::XmlRpcValue original_;
+};
+
+/// A request of TableSampler with one fixture of configured object @p object at (0, 0, @p z).
+SamplePlacements::Request withFixture(std::uint64_t seed, const std::string& object, double z) {
+  SamplePlacements::Request r = seeded(seed);
+  r.dry_run = true;
+  placement_samplers::Fixture fixture;
+  fixture.name = "fixture_" + object;
+  fixture.object = object;
+  fixture.pose.position.z = z;
+  fixture.pose.orientation.w = 1.0;
+  r.fixtures.push_back(fixture);
+  r.sampler = "TableSampler";
+  return r;
+}
+
 // An object whose URDF comes from a parameter (the .test file loads urdf/bin.urdf into
 // /bin_description), added through a reload and used as a request fixture.
 TEST_F(PlacementServerTest, UrdfParamObject) {
-  ros::NodeHandle nh;
-  XmlRpc::XmlRpcValue objects;
-  ASSERT_TRUE(nh.getParam("/placement_server/objects", objects));
-  const XmlRpc::XmlRpcValue original = objects;
-  objects["param_bin"]["urdf_param"] = "/bin_description";
-  nh.setParam("/placement_server/objects", objects);
-  std_srvs::Trigger trigger;
-  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
-  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
-
-  SamplePlacements::Request r = seeded(17);
-  r.dry_run = true;
-  placement_samplers::Fixture bin;
-  bin.name = "crate";
-  bin.object = "param_bin";
-  bin.pose.position.x = 0.0;
-  bin.pose.position.z = 0.8;
-  bin.pose.orientation.w = 1.0;
-  r.fixtures.push_back(bin);
-  r.sampler = "TableSampler";
+  ObjectParams params;
+  const std_srvs::Trigger::Response added =
+      params.add("param_bin", "urdf_param", "/bin_description");
+  EXPECT_TRUE(added.success) << added.message;
+  SamplePlacements::Request r = withFixture(17, "param_bin", 0.8);
   r.max_attempts = 200;
   // The bin stands on the table's middle: under robosuite's test its circle covers most of
   // the table, and objects are placed around it.
@@ -549,62 +576,32 @@ TEST_F(PlacementServerTest, UrdfParamObject) {
   for (const auto& p : srv.response.scenes[0].placements) {
     EXPECT_GT(std::hypot(p.pose.position.x, p.pose.position.y), 0.25) << p.name;
   }
-
-  objects["broken"]["urdf_param"] = "/no_such_description";
-  nh.setParam("/placement_server/objects", objects);
-  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
-  EXPECT_FALSE(trigger.response.success);
-  EXPECT_NE(trigger.response.message.find("/no_such_description"), std::string::npos)
-      << trigger.response.message;
-
-  nh.setParam("/placement_server/objects", original);
-  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
-  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+  const std_srvs::Trigger::Response broken =
+      params.add("broken", "urdf_param", "/no_such_description");
+  EXPECT_FALSE(broken.success);
+  EXPECT_NE(broken.message.find("/no_such_description"), std::string::npos) << broken.message;
 }
 
 // An MJCF object from a parameter (the .test file loads config/robosuite_objects/can.xml into
 // /can_mjcf), added through a reload: robosuite's values from its sites.
 TEST_F(PlacementServerTest, MjcfParamObject) {
-  ros::NodeHandle nh;
-  XmlRpc::XmlRpcValue objects;
-  ASSERT_TRUE(nh.getParam("/placement_server/objects", objects));
-  const XmlRpc::XmlRpcValue original = objects;
-  objects["param_can"]["mjcf_param"] = "/can_mjcf";
-  nh.setParam("/placement_server/objects", objects);
-  std_srvs::Trigger trigger;
-  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
-  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
-
+  ObjectParams params;
+  const std_srvs::Trigger::Response added = params.add("param_can", "mjcf_param", "/can_mjcf");
+  EXPECT_TRUE(added.success) << added.message;
   // The can stands on the table's centre as a request fixture; robosuite's test keeps every
   // object on the table out of its circle (radius 0.03 m from its site).
-  SamplePlacements::Request r = seeded(18);
-  r.dry_run = true;
-  placement_samplers::Fixture can;
-  can.name = "mjcf_can";
-  can.object = "param_can";
-  can.pose.position.z = 0.85;
-  can.pose.orientation.w = 1.0;
-  r.fixtures.push_back(can);
-  r.sampler = "TableSampler";
-  const SamplePlacements srv = call(r);
+  const SamplePlacements srv = call(withFixture(18, "param_can", 0.85));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
   for (const auto& p : srv.response.scenes[0].placements) {
     // 0.03 m plus the smallest radius of the three (the cube's, 0.0297 m).
     EXPECT_GT(std::hypot(p.pose.position.x, p.pose.position.y), 0.0597) << p.name;
   }
-
-  objects["broken"]["mjcf_param"] = "/no_such_mjcf";
-  nh.setParam("/placement_server/objects", objects);
-  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
-  EXPECT_FALSE(trigger.response.success);
-  EXPECT_NE(trigger.response.message.find("parameter '/no_such_mjcf' does not exist or does not "
-                                          "hold MJCF text"),
+  const std_srvs::Trigger::Response broken = params.add("broken", "mjcf_param", "/no_such_mjcf");
+  EXPECT_FALSE(broken.success);
+  EXPECT_NE(broken.message.find("parameter '/no_such_mjcf' does not exist or does not hold MJCF "
+                                "text"),
             std::string::npos)
-      << trigger.response.message;
-
-  nh.setParam("/placement_server/objects", original);
-  ASSERT_TRUE(ros::service::call("/placement_server/reload", trigger));
-  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+      << broken.message;
 }
 
 // Concurrent clients get, for each seed, the answer a lone client gets.
