@@ -336,12 +336,17 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
     if (node.get("mjcf_file") != nullptr && node.get("mjcf_param") != nullptr) {
       node.fail("give either mjcf_file or mjcf_param, not both");
     }
-    // robosuite's values are the sites' positions: they take the place of derived ones.
+    // robosuite's values are the sites' positions: they take the place of derived ones. Under
+    // an init_orientation the offsets turn with the object, as derived ones would; the radius,
+    // robosuite's number, stays.
     MjcfObject mjcf = parseMjcf(name, node, options, meshes);
     shapes = std::move(mjcf.shapes);
+    const Eigen::Quaterniond init = node.get("init_orientation")
+                                        ? parseQuaternion(node.at("init_orientation"))
+                                        : Eigen::Quaterniond::Identity();
     overrides.hasBottomOffset = overrides.hasTopOffset = overrides.hasHorizontalRadius = true;
-    overrides.bottomOffset = mjcf.bottomOffset;
-    overrides.topOffset = mjcf.topOffset;
+    overrides.bottomOffset = init * mjcf.bottomOffset;
+    overrides.topOffset = init * mjcf.topOffset;
     overrides.horizontalRadius = mjcf.horizontalRadius;
   } else if (node.get("urdf_file") != nullptr || node.get("urdf_param") != nullptr) {
     shapes = parseUrdf(name, node, options, meshes);

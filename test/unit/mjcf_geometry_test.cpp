@@ -182,6 +182,17 @@ objects:
   EXPECT_DOUBLE_EQ(box.horizontalRadius, 0.06);
   EXPECT_EQ(box.shapes.size(), 2u);
   EXPECT_DOUBLE_EQ(config->findObjectPtr("can")->horizontalRadius, 0.05);  // override wins
+  // init_orientation: the site offsets turn with the object (here a quarter turn about x: the
+  // top site (0, 0, 0.08) ends up at (0, -0.08, 0)); the radius is robosuite's number.
+  const auto turned = buildSceneConfig(parseYaml(R"(
+objects:
+  box: {mjcf_file: box_object.xml, init_orientation: [0.7071067811865476, 0, 0, 0.7071067811865476]}
+)",
+                                                 "test.yaml"),
+                                       options);
+  const ObjectModel& t = *turned->findObjectPtr("box");
+  EXPECT_TRUE(t.topOffset.isApprox(Eigen::Vector3d(0, -0.08, 0), 1e-12)) << t.topOffset.transpose();
+  EXPECT_DOUBLE_EQ(t.horizontalRadius, 0.06);
   try {
     buildSceneConfig(parseYaml("objects:\n  x: {mjcf_file: no_top_site.xml}\n", "t.yaml"), options);
     FAIL();
