@@ -71,6 +71,19 @@ ps_build() {
   fi
 }
 
+# The sample_placements service that `roslaunch placement_samplers placement_server.launch ARGS`
+# serves: its name follows the ns:= and name:= arguments, as in the launch file.
+ps_service_name() {
+  local ns="" name=placement_server a
+  for a in "$@"; do
+    case "$a" in
+      ns:=*) ns=${a#ns:=} ;;
+      name:=*) name=${a#name:=} ;;
+    esac
+  done
+  echo "${ns:+/${ns#/}}/$name/sample_placements"
+}
+
 # Sources the build's devel/setup.bash (it fails under set -u).
 ps_source() {
   set +u

@@ -332,6 +332,7 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
   }
   std::vector<Shape> shapes;
   ObjectOverrides overrides;
+  bool siteOffsets = false;  // the offsets are an MJCF file's sites
   if (node.get("mjcf_file") != nullptr || node.get("mjcf_param") != nullptr) {
     if (node.get("mjcf_file") != nullptr && node.get("mjcf_param") != nullptr) {
       node.fail("give either mjcf_file or mjcf_param, not both");
@@ -341,12 +342,10 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
     // robosuite's number, stays.
     MjcfObject mjcf = parseMjcf(name, node, options, meshes);
     shapes = std::move(mjcf.shapes);
-    const Eigen::Quaterniond init = node.get("init_orientation")
-                                        ? parseQuaternion(node.at("init_orientation"))
-                                        : Eigen::Quaterniond::Identity();
+    siteOffsets = true;  // turned below, once init_orientation is read
     overrides.hasBottomOffset = overrides.hasTopOffset = overrides.hasHorizontalRadius = true;
-    overrides.bottomOffset = init * mjcf.bottomOffset;
-    overrides.topOffset = init * mjcf.topOffset;
+    overrides.bottomOffset = mjcf.bottomOffset;
+    overrides.topOffset = mjcf.topOffset;
     overrides.horizontalRadius = mjcf.horizontalRadius;
   } else if (node.get("urdf_file") != nullptr || node.get("urdf_param") != nullptr) {
     shapes = parseUrdf(name, node, options, meshes);
@@ -388,6 +387,15 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
   Eigen::Quaterniond init = Eigen::Quaterniond::Identity();
   if (const ConfigNode* q = node.get("init_orientation")) {
     init = parseQuaternion(*q);
+  }
+  if (siteOffsets) {
+    // Given overrides replace the sites: they are taken as they are.
+    if (node.get("bottom_offset") == nullptr) {
+      overrides.bottomOffset = init * overrides.bottomOffset;
+    }
+    if (node.get("top_offset") == nullptr) {
+      overrides.topOffset = init * overrides.topOffset;
+    }
   }
   const std::string problem = geometryProblem(shapes, init);
   if (!problem.empty()) {
