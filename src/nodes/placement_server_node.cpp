@@ -2,7 +2,7 @@
 
 #include <csignal>
 
-#include "placement_samplers/malloc_tuning.hpp"
+#include "placement_samplers/process/malloc_tuning.hpp"
 #include "placement_samplers/ros/placement_server.hpp"
 
 namespace {

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/unit_quaternion.hpp"
+#include "placement_samplers/geometry/unit_quaternion.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {

@@ -5,10 +5,10 @@
 #include <chrono>
 #include <sstream>
 
-#include "placement_samplers/config_builder.hpp"
+#include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/malloc_tuning.hpp"
-#include "placement_samplers/random.hpp"
+#include "placement_samplers/process/malloc_tuning.hpp"
+#include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/ros/conversions.hpp"
 #include "placement_samplers/ros/param_reader.hpp"
 #include "placement_samplers/ros/scene_markers.hpp"

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "placement_samplers/ros/conversions.hpp"
-#include "placement_samplers/sampler_regions.hpp"
+#include "placement_samplers/sampling/sampler_regions.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {

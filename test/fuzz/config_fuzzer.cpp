@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string>
 
-#include "placement_samplers/config_builder.hpp"
+#include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace placement_samplers;

@@ -10,8 +10,8 @@
 #include <string>
 
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/mjcf_geometry.hpp"
-#include "placement_samplers/object_model.hpp"
+#include "placement_samplers/geometry/mjcf_geometry.hpp"
+#include "placement_samplers/geometry/object_model.hpp"
 
 namespace {
 

@@ -5,9 +5,9 @@
 #include <string>
 
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/mesh_loader.hpp"
-#include "placement_samplers/object_model.hpp"
-#include "placement_samplers/urdf_geometry.hpp"
+#include "placement_samplers/geometry/mesh_loader.hpp"
+#include "placement_samplers/geometry/object_model.hpp"
+#include "placement_samplers/geometry/urdf_geometry.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace placement_samplers;

@@ -9,7 +9,7 @@
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/ros/conversions.hpp"
-#include "placement_samplers/unit_quaternion.hpp"
+#include "placement_samplers/geometry/unit_quaternion.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "placement_samplers/SamplePlacements.h"
-#include "placement_samplers/sample_scenes_cli.hpp"
+#include "cli/sample_scenes_cli.hpp"
 #include "node_test_helpers.hpp"
 
 namespace {

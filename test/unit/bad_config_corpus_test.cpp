@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/config_builder.hpp"
+#include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
 
 namespace placement_samplers {

@@ -8,12 +8,12 @@
 #include <optional>
 #include <string>
 
-#include "placement_samplers/config_builder.hpp"
-#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/scene_generator.hpp"
-#include "placement_samplers/sequential_composite_sampler.hpp"
-#include "placement_samplers/uniform_random_sampler.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
+#include "placement_samplers/sampling/sequential_composite_sampler.hpp"
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {

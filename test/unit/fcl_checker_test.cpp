@@ -14,17 +14,17 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/collision_checker.hpp"
-#include "placement_samplers/combined_checker.hpp"
-#include "placement_samplers/make_collision_checker.hpp"
-#include "placement_samplers/radius_checker.hpp"
-#include "placement_samplers/config_builder.hpp"
-#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/collision/collision_checker.hpp"
+#include "placement_samplers/collision/combined_checker.hpp"
+#include "placement_samplers/collision/make_collision_checker.hpp"
+#include "placement_samplers/collision/radius_checker.hpp"
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/fcl_checker.hpp"
-#include "placement_samplers/object_config.hpp"
-#include "placement_samplers/sample_context.hpp"
-#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/collision/fcl_checker.hpp"
+#include "placement_samplers/config/object_config.hpp"
+#include "placement_samplers/sampling/sample_context.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 
 namespace placement_samplers {
 namespace {

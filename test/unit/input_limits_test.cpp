@@ -24,17 +24,17 @@
 #include <thread>
 #include <vector>
 
-#include "placement_samplers/config_builder.hpp"
-#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/input_files.hpp"
 #include "placement_samplers/limits.hpp"
-#include "placement_samplers/malloc_tuning.hpp"
-#include "placement_samplers/mesh_loader.hpp"
-#include "placement_samplers/sample_scenes_cli.hpp"
-#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/process/malloc_tuning.hpp"
+#include "placement_samplers/geometry/mesh_loader.hpp"
+#include "cli/sample_scenes_cli.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/text.hpp"
-#include "placement_samplers/urdf_geometry.hpp"
+#include "placement_samplers/geometry/urdf_geometry.hpp"
 #include "test_helpers.hpp"
 
 #if defined(__has_feature)

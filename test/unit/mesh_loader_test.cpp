@@ -15,10 +15,10 @@
 #include <string>
 #include <unistd.h>
 
-#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/mesh_loader.hpp"
-#include "placement_samplers/object_config.hpp"
+#include "placement_samplers/geometry/mesh_loader.hpp"
+#include "placement_samplers/config/object_config.hpp"
 
 namespace placement_samplers {
 namespace {

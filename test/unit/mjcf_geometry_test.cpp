@@ -8,10 +8,10 @@
 #include <iterator>
 #include <string>
 
-#include "placement_samplers/config_builder.hpp"
-#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/mjcf_geometry.hpp"
+#include "placement_samplers/geometry/mjcf_geometry.hpp"
 
 namespace placement_samplers {
 namespace {

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "placement_samplers/pcg64.hpp"
-#include "placement_samplers/random.hpp"
+#include "placement_samplers/sampling/pcg64.hpp"
+#include "placement_samplers/sampling/random.hpp"
 
 namespace placement_samplers {
 namespace {

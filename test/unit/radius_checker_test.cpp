@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/radius_checker.hpp"
-#include "placement_samplers/random.hpp"
-#include "placement_samplers/sample_context.hpp"
-#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/collision/radius_checker.hpp"
+#include "placement_samplers/sampling/random.hpp"
+#include "placement_samplers/sampling/sample_context.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {

@@ -2,7 +2,7 @@
 // same lowest overlapping index for every entry count (blocks of 4 and 8, groups of 64, the
 // masked tail) and for touching, NaN, infinite and huge values.
 
-#include "radius_scan.hpp"
+#include "collision/radius_scan.hpp"
 
 #include <gtest/gtest.h>
 

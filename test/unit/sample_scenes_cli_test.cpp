@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/config_builder.hpp"
-#include "placement_samplers/config_node.hpp"
-#include "placement_samplers/sample_scenes_cli.hpp"
-#include "placement_samplers/scene_generator.hpp"
-#include "placement_samplers/scene_json.hpp"
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/config/config_node.hpp"
+#include "cli/sample_scenes_cli.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
+#include "placement_samplers/output/scene_json.hpp"
 
 namespace placement_samplers {
 namespace {

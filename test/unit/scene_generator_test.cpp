@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/radius_checker.hpp"
+#include "placement_samplers/collision/radius_checker.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/radius_checker.hpp"
+#include "placement_samplers/collision/radius_checker.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/sequential_composite_sampler.hpp"
-#include "placement_samplers/uniform_random_sampler.hpp"
+#include "placement_samplers/sampling/sequential_composite_sampler.hpp"
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {

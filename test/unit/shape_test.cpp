@@ -7,8 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "placement_samplers/object_model.hpp"
-#include "placement_samplers/shape.hpp"
+#include "placement_samplers/geometry/object_model.hpp"
+#include "placement_samplers/geometry/shape.hpp"
 
 namespace placement_samplers {
 namespace {

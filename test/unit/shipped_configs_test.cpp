@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/config_builder.hpp"
-#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 
 namespace placement_samplers {
 namespace {

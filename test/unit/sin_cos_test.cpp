@@ -1,4 +1,4 @@
-#include "placement_samplers/sin_cos.hpp"
+#include "sampling/sin_cos.hpp"
 
 #include <gtest/gtest.h>
 

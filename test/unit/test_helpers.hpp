@@ -14,16 +14,16 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/collision_checker.hpp"
-#include "placement_samplers/radius_checker.hpp"
-#include "placement_samplers/config_builder.hpp"
-#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/collision/collision_checker.hpp"
+#include "placement_samplers/collision/radius_checker.hpp"
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/object_model.hpp"
-#include "placement_samplers/placement.hpp"
-#include "placement_samplers/random.hpp"
-#include "placement_samplers/sample_context.hpp"
-#include "placement_samplers/scene_config.hpp"
+#include "placement_samplers/geometry/object_model.hpp"
+#include "placement_samplers/sampling/placement.hpp"
+#include "placement_samplers/sampling/random.hpp"
+#include "placement_samplers/sampling/sample_context.hpp"
+#include "placement_samplers/config/scene_config.hpp"
 
 namespace placement_samplers {
 namespace test {

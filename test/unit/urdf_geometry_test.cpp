@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "placement_samplers/config_builder.hpp"
-#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
-#include "placement_samplers/object_config.hpp"
-#include "placement_samplers/urdf_geometry.hpp"
+#include "placement_samplers/config/object_config.hpp"
+#include "placement_samplers/geometry/urdf_geometry.hpp"
 
 namespace placement_samplers {
 namespace {

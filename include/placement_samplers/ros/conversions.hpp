@@ -10,7 +10,7 @@
 
 #include "placement_samplers/SamplePlacements.h"
 #include "placement_samplers/Scene.h"
-#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "placement_samplers/config_node.hpp"
+#include "placement_samplers/config/config_node.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "placement_samplers/scene_generator.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {

@@ -1,0 +1,99 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "placement_samplers/collision/collision_checker.hpp"
+#include "placement_samplers/sampling/placement.hpp"
+#include "placement_samplers/sampling/random.hpp"
+
+namespace placement_samplers {
+
+/// Everything that varies within one scene, handed down the sampler tree. Samplers keep no
+/// per-call state, so one tree serves every thread; each thread owns its context.
+class SampleContext {
+ public:
+  /// @param checker the collision test of this scene (owned by the caller)
+  /// @param maxAttempts overrides every sampler's limit when non-zero
+  SampleContext(Engine& engine, CollisionChecker& checker, std::uint32_t maxAttempts = 0);
+
+  /// Forget every entry and placement, keep the buffers (start of a scene).
+  void clear();
+  /// Adds a fixture: checked against, never moved, not part of the placements.
+  /// @p name must outlive the scene (failure messages read it).
+  void addFixture(std::string_view name, const ObjectModel* object, const Eigen::Vector3d& position,
+                  const Eigen::Quaterniond& orientation);
+  /// Records @p candidate, accepted by sampler @p sampler after @p attempts samples, as a
+  /// placement and makes it an obstacle for the following ones.
+  void addPlacement(std::string_view sampler, const Candidate& candidate, std::uint32_t attempts,
+                    bool hidden);
+
+  /// The fixture or placed object called @p name, or nullptr.
+  const PlacedEntry* find(const std::string& name) const;
+
+  /// @return the index of an entry that @p candidate collides with, or CollisionChecker::kNone
+  /// Not const: the checker may move its scratch objects (CollisionChecker::firstCollision).
+  std::ptrdiff_t firstCollision(const Candidate& candidate) {
+    return checker_.firstCollision(entries_, candidate);
+  }
+  bool needsOrientation() const { return checker_.needsOrientation(); }
+
+  /// Per-entry rejection counters, zeroed, sized for the current entries.
+  std::vector<std::uint32_t>& blockerCounts();
+
+  /// Records why the scene failed; the sampling stops.
+  void fail(Failure failure) { failure_ = std::move(failure); }
+
+  /// Sampling stops with a failure once @p deadline has passed (checked every 1024 attempts).
+  void setDeadline(std::optional<std::chrono::steady_clock::time_point> deadline) {
+    deadline_ = deadline;
+  }
+  bool expired() const { return deadline_ && std::chrono::steady_clock::now() > *deadline_; }
+
+  /// The scene's stream: every draw of the samplers, hidden objects excepted.
+  Engine& engine() { return *engine_; }
+  /// Draws from @p engine from now on.
+  void setEngine(Engine& engine) { engine_ = &engine; }
+  /// Makes this scene @p index of request seed @p seed for hiddenEngine() (the scene's own
+  /// engine is the caller's: setEngine()).
+  void setScene(std::uint64_t seed, std::uint64_t index) {
+    seed_ = seed;
+    index_ = index;
+    hiddenSeeded_ = false;
+  }
+  /// The hidden objects' stream (random.hpp's hiddenEngine(seed, index)), seeded on first use:
+  /// hidden objects draw nothing from engine(), as robosuite's hide sampler has a generator of
+  /// its own.
+  Engine& hiddenEngine() {
+    if (!hiddenSeeded_) {
+      hiddenEngine_ = placement_samplers::hiddenEngine(seed_, index_);
+      hiddenSeeded_ = true;
+    }
+    return hiddenEngine_;
+  }
+  std::uint32_t maxAttempts() const { return maxAttempts_; }
+  const std::vector<PlacedEntry>& entries() const { return entries_; }
+  const std::vector<ObjectPlacement>& placements() const { return placements_; }
+  std::vector<ObjectPlacement>& placements() { return placements_; }
+  const std::optional<Failure>& failure() const { return failure_; }
+
+ private:
+  Engine* engine_;
+  Engine hiddenEngine_;
+  std::uint64_t seed_ = 0;
+  std::uint64_t index_ = 0;
+  bool hiddenSeeded_ = false;
+  CollisionChecker& checker_;
+  std::uint32_t maxAttempts_;
+  std::vector<PlacedEntry> entries_;
+  std::vector<ObjectPlacement> placements_;
+  std::vector<std::uint32_t> blockerCounts_;
+  std::optional<Failure> failure_;
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
+};
+
+}  // namespace placement_samplers

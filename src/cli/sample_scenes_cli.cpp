@@ -1,0 +1,229 @@
+#include "cli/sample_scenes_cli.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <limits>
+#include <new>
+#include <stdexcept>
+#include <thread>
+
+#include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/sampling/random.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
+#include "placement_samplers/output/scene_json.hpp"
+#include "placement_samplers/text.hpp"
+#include "sampling/parallel.hpp"
+
+namespace placement_samplers {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: sample_scenes --config FILE [--seed S] [--scenes K] [--first-scene N]\n"
+    "                     [--sampler NAME] [--collision-check radius|fcl|radius_and_fcl]\n"
+    "                     [--max-attempts N] [--threads T]\n"
+    "       sample_scenes --config FILE --describe\n"
+    "Samples scenes N .. N+K-1 (default N = 0, K = 1) from the YAML configuration FILE and\n"
+    "prints one JSON object per scene and line. S defaults to the configuration's seed (0 =\n"
+    "random); scene i of seed S is the same whatever N, K and T are (numpy's\n"
+    "default_rng([S, i])), so processes given pieces of N .. N+K-1 together print the scenes\n"
+    "of one process. T = 0 (default) uses every core. --describe prints the built\n"
+    "configuration as JSON instead (derived radii and offsets, the sampler tree).\n"
+    "Exit status: 0 all scenes placed, 1 some scene failed, 2 usage or configuration error.\n";
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+std::uint64_t parseUnsigned(const std::string& flag, const std::string& text, std::uint64_t max) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    throw UsageError(flag + ": expected a non-negative integer, got " + quoteText(text));
+  }
+  try {
+    const unsigned long long v = std::stoull(text);
+    if (v > max) {
+      throw std::out_of_range("too large");
+    }
+    return v;
+  } catch (const std::out_of_range&) {
+    throw UsageError(flag + ": " + text + " is out of range (at most " + std::to_string(max) + ")");
+  }
+}
+
+/// Scenes per block: the output is written block by block, so memory stays bounded for any K.
+constexpr std::uint64_t kBlock = 8192;
+/// Placements per block, at most (unless one scene has more): about 70 MB of results and text.
+constexpr std::uint64_t kBlockPlacements = 1 << 20;
+
+/// Samples and prints scenes firstScene .. firstScene + count - 1 in blocks; formatting is spread
+/// over the threads too, since printing a scene costs more than sampling it. @return true when all
+/// succeeded.
+bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
+                 std::uint64_t seed, std::uint64_t firstScene, std::uint64_t count,
+                 unsigned threads, std::ostream& out) {
+  const unsigned workers =
+      threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::string> texts(workers);
+  bool allPlaced = true;
+  const std::uint64_t perScene = std::max<std::uint64_t>(generator.placementsPerScene(prepared), 1);
+  const std::uint64_t block = std::clamp<std::uint64_t>(kBlockPlacements / perScene, 1, kBlock);
+  for (std::uint64_t first = 0; first < count; first += block) {
+    const std::uint64_t n = std::min(block, count - first);
+    const std::vector<SceneResult> results =
+        generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads);
+    const std::size_t slices = static_cast<std::size_t>(std::min<std::uint64_t>(workers, n));
+    auto format = [&](std::size_t slice) {
+      // A string of this thread's own (texts' buffers are kept): neighbouring std::string
+      // objects share a cache line, and appending to them from two threads halved the speed.
+      std::string text;
+      text.swap(texts[slice]);
+      text.clear();
+      for (std::size_t i = slice * n / slices; i < (slice + 1) * n / slices; ++i) {
+        appendSceneJson(text, results[i]);
+        text += '\n';
+      }
+      texts[slice].swap(text);
+    };
+    std::atomic<std::size_t> nextSlice{0};
+    detail::runOnThreads(static_cast<unsigned>(slices), [&] {
+      for (std::size_t slice = nextSlice++; slice < slices; slice = nextSlice++) {
+        format(slice);
+      }
+    });
+    for (std::size_t slice = 0; slice < slices; ++slice) {
+      out.write(texts[slice].data(), static_cast<std::streamsize>(texts[slice].size()));
+    }
+    for (const SceneResult& scene : results) {
+      allPlaced = allPlaced && scene.success;
+    }
+  }
+  out.flush();
+  return allPlaced;
+}
+
+}  // namespace
+
+int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  std::string configPath;
+  std::string sampler;
+  std::string mode;
+  bool haveSeed = false;
+  std::uint64_t seed = 0;
+  std::uint64_t scenes = 1;
+  std::uint64_t firstScene = 0;
+  std::uint32_t maxAttempts = 0;
+  unsigned threads = 0;
+  bool describe = false;
+  try {
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      const std::string& flag = args[i];
+      if (flag == "--help" || flag == "-h") {
+        out << kUsage;
+        return 0;
+      }
+      if (flag == "--describe") {
+        describe = true;
+        continue;
+      }
+      if (i + 1 >= args.size()) {
+        throw UsageError(flag == "--config" || flag == "--seed" || flag == "--scenes" ||
+                                 flag == "--first-scene" || flag == "--sampler" ||
+                                 flag == "--collision-check" || flag == "--max-attempts" ||
+                                 flag == "--threads"
+                             ? flag + ": missing value"
+                             : "unknown argument " + quoteText(flag));
+      }
+      const std::string& value = args[++i];
+      if (flag == "--config") {
+        configPath = value;
+      } else if (flag == "--seed") {
+        haveSeed = true;
+        seed = parseUnsigned(flag, value, std::numeric_limits<std::uint64_t>::max());
+      } else if (flag == "--scenes") {
+        scenes = parseUnsigned(flag, value, 100000000);
+      } else if (flag == "--first-scene") {
+        firstScene = parseUnsigned(flag, value, std::numeric_limits<std::uint64_t>::max());
+      } else if (flag == "--sampler") {
+        sampler = value;
+      } else if (flag == "--collision-check") {
+        mode = value;
+      } else if (flag == "--max-attempts") {
+        maxAttempts = static_cast<std::uint32_t>(
+            parseUnsigned(flag, value, std::numeric_limits<std::uint32_t>::max()));
+      } else if (flag == "--threads") {
+        threads = static_cast<unsigned>(parseUnsigned(flag, value, 1024));
+      } else {
+        throw UsageError("unknown argument " + quoteText(flag));
+      }
+    }
+    if (configPath.empty()) {
+      throw UsageError("--config FILE is required");
+    }
+  } catch (const UsageError& e) {
+    err << "sample_scenes: " << e.what() << "\n" << kUsage;
+    return 2;
+  }
+
+  const std::string shownPath = escapeText(configPath);
+  // Memory is bounded by the limits on configurations and answers; should it run out anyway
+  // (a tight ulimit), the user gets a message and status 2 rather than an abort.
+  try {
+    ConfigNode tree;
+    try {
+      tree = loadYamlFile(configPath);
+    } catch (const ConfigError& e) {
+      err << "sample_scenes: " << e.what() << "\n";
+      return 2;
+    }
+    BuildOptions options;
+    // Relative mesh and URDF paths are relative to the configuration file.
+    options.baseDirectory = std::filesystem::path(configPath).parent_path().string();
+    const SceneGenerator generator(buildSceneConfig(tree, options));
+    for (const std::string& warning : generator.config().warnings) {
+      err << "sample_scenes: " << shownPath << ": warning: " << warning << "\n";
+    }
+    if (describe) {
+      out << configToJson(generator.config()) << "\n";
+      return 0;
+    }
+    SampleRequest request;
+    request.sampler = sampler;
+    request.maxAttempts = maxAttempts;
+    if (!mode.empty()) {
+      ConfigNode node = ConfigNode::makeRoot();
+      node.add("collision_check").setString(mode);
+      try {
+        request.collisionCheck = parseCollisionMode(node.at("collision_check"));
+      } catch (const ConfigError&) {
+        err << "sample_scenes: --collision-check: expected radius, fcl or radius_and_fcl, got "
+            << quoteText(mode) << "\n";
+        return 2;
+      }
+    }
+    const PreparedRequest prepared = generator.prepare(request);
+    if (!haveSeed) {
+      seed = generator.config().seed;
+    }
+    if (seed == 0) {
+      seed = randomSeed();  // a fresh seed, printed with every scene
+    }
+    if (scenes > 0 && scenes - 1 > std::numeric_limits<std::uint64_t>::max() - firstScene) {
+      err << "sample_scenes: --first-scene " << firstScene << " with --scenes " << scenes
+          << ": scene indices must stay below 2^64\n";
+      return 2;
+    }
+    return writeScenes(generator, prepared, seed, firstScene, scenes, threads, out) ? 0 : 1;
+  } catch (const ConfigError& e) {
+    err << "sample_scenes: " << shownPath << ": " << e.what() << "\n";
+  } catch (const RequestError& e) {
+    err << "sample_scenes: " << e.what() << "\n";
+  } catch (const std::bad_alloc&) {
+    err << "sample_scenes: " << shownPath << ": out of memory\n";
+  } catch (const std::exception& e) {
+    err << "sample_scenes: " << shownPath << ": " << escapeText(e.what()) << "\n";
+  }
+  return 2;
+}
+
+}  // namespace placement_samplers

@@ -1,0 +1,312 @@
+#include "placement_samplers/collision/fcl_checker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <unordered_map>
+#include <utility>
+
+#include "collision/fcl_compat.hpp"
+#include "placement_samplers/text.hpp"
+
+namespace placement_samplers {
+namespace {
+
+using fcl_compat::Body;
+using fcl_compat::GeometryPtr;
+
+/// BVHs of meshes, built once per Mesh for the whole process and shared by every checker:
+/// FCL only reads an OBBRSS model during queries. Keyed by address, checked through a weak
+/// pointer so that a new mesh at a freed address is not mistaken for the old one.
+class MeshGeometryCache {
+ public:
+  GeometryPtr get(const std::shared_ptr<const Mesh>& mesh) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = entries_.find(mesh.get());
+    if (it != entries_.end() && it->second.first.lock() == mesh) {
+      return it->second.second;
+    }
+    for (auto e = entries_.begin(); e != entries_.end();) {
+      e = e->second.first.expired() ? entries_.erase(e) : std::next(e);
+    }
+    auto model = std::make_shared<fcl_compat::MeshModel>();
+    std::vector<fcl_compat::Vector3> vertices(mesh->vertices.begin(), mesh->vertices.end());
+    std::vector<fcl_compat::Triangle> triangles;
+    triangles.reserve(mesh->triangles.size());
+    for (const Eigen::Vector3i& t : mesh->triangles) {
+      triangles.emplace_back(t[0], t[1], t[2]);
+    }
+    if (model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size())) !=
+            fcl::BVH_OK ||
+        model->addSubModel(vertices, triangles) != fcl::BVH_OK ||
+        model->endModel() != fcl::BVH_OK) {
+      throw std::runtime_error("FCL could not build a BVH for mesh " + quoteText(mesh->source));
+    }
+    model->computeLocalAABB();
+    entries_[mesh.get()] = {mesh, model};
+    return model;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<const Mesh*, std::pair<std::weak_ptr<const Mesh>, GeometryPtr>> entries_;
+};
+
+MeshGeometryCache& meshGeometryCache() {
+  static MeshGeometryCache cache;
+  return cache;
+}
+
+GeometryPtr makeGeometry(const Shape& shape) {
+  GeometryPtr g;
+  switch (shape.type) {
+    case ShapeType::Box:
+      g = std::make_shared<fcl_compat::Box>(shape.size);
+      break;
+    case ShapeType::Cylinder:  // FCL: axis z, centred, lz = full length, as Shape
+      g = std::make_shared<fcl_compat::Cylinder>(shape.radius, shape.length);
+      break;
+    case ShapeType::Sphere:
+      g = std::make_shared<fcl_compat::Sphere>(shape.radius);
+      break;
+    case ShapeType::Capsule:  // FCL: lz = distance between the cap centres, as Shape
+      g = std::make_shared<fcl_compat::Capsule>(shape.radius, shape.length);
+      break;
+    case ShapeType::Mesh:
+      if (!shape.mesh || shape.mesh->triangles.empty()) {
+        throw std::invalid_argument("mesh shape without triangles");
+      }
+      return meshGeometryCache().get(shape.mesh);
+  }
+  g->computeLocalAABB();
+  return g;
+}
+
+/// True when @p q turns only about the world z axis: horizontal distances from the origin, and
+/// so a horizontal radius, are unchanged.
+bool aboutWorldZ(const Eigen::Quaterniond& q) {
+  return std::abs(q.x()) <= 1e-9 && std::abs(q.y()) <= 1e-9;
+}
+
+}  // namespace
+
+struct FclChecker::Impl {
+  /// One pose of an object: an FCL body per shape, and its circle.
+  struct Instance {
+    std::vector<std::unique_ptr<Body>> bodies;
+    std::ptrdiff_t entry = kNone;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    double radius = 0.0;
+    bool circle = false;  ///< the circle bounds the geometry at this pose
+  };
+
+  /// FCL geometry of one ObjectModel, the candidate's bodies, and a pool of placed instances
+  /// reused from scene to scene.
+  struct ObjectGeometry {
+    std::vector<GeometryPtr> geometries;
+    std::vector<Eigen::Isometry3d> poses;  ///< of each shape in the object frame
+    Instance candidate;
+    std::vector<std::unique_ptr<Instance>> placed;
+    std::size_t used = 0;  ///< placed instances in the current scene
+  };
+
+  struct Query {
+    Impl* impl;
+    const Instance* candidate;
+    std::ptrdiff_t hit;
+  };
+
+  explicit Impl(double m) : margin(m), threshold(m - kTouchTolerance) {
+    // Contacts only when a pair intersects; many, because a mesh resting on a face touches it
+    // with many triangles and a deep one must not be cut off.
+    depthRequest.num_max_contacts = 1u << 16;
+    depthRequest.enable_contact = true;
+  }
+
+  ObjectGeometry& geometryOf(const ObjectModel& object) {
+    if (&object == lastObject) {  // attempts for one object come in runs
+      return *lastGeometry;
+    }
+    std::unique_ptr<ObjectGeometry>& slot = objects[&object];
+    if (!slot) {
+      slot = std::make_unique<ObjectGeometry>();
+      for (const Shape& shape : object.shapes) {
+        slot->geometries.push_back(makeGeometry(shape));
+        slot->poses.push_back(shape.pose);
+      }
+      initInstance(*slot, slot->candidate);
+    }
+    lastObject = &object;
+    lastGeometry = slot.get();
+    return *slot;
+  }
+
+  /// Adds a placed body to the broadphase: a list while there are few, FCL's tree beyond.
+  void registerBody(Body* body) {
+    bodies.push_back(body);
+    if (treeMode) {
+      manager->registerObject(body);
+    } else if (bodies.size() > listLimit) {
+      for (Body* b : bodies) {
+        manager->registerObject(b);
+      }
+      treeMode = true;
+    }
+  }
+
+  /// The candidate's bodies against the placed ones; query.hit is set on the first collision.
+  void collide(const Instance& candidate, Query& query) {
+    for (const std::unique_ptr<Body>& body : candidate.bodies) {
+      if (treeMode) {
+        manager->collide(body.get(), &query, &Impl::onPair);
+      } else {
+        // In entry order, boxes first: for a few bodies cheaper than the tree.
+        const fcl_compat::Aabb& box = body->getAABB();
+        for (Body* other : bodies) {
+          if (box.overlap(other->getAABB()) && onPair(body.get(), other, &query)) {
+            break;
+          }
+        }
+      }
+      if (query.hit != kNone) {
+        return;
+      }
+    }
+  }
+
+  static void initInstance(const ObjectGeometry& g, Instance& instance) {
+    for (const GeometryPtr& geometry : g.geometries) {
+      instance.bodies.push_back(std::make_unique<Body>(geometry));
+      instance.bodies.back()->setUserData(&instance);
+    }
+  }
+
+  static void place(const ObjectGeometry& g, const ObjectModel& object, Instance& instance,
+                    const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                    double grow) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = orientation.normalized().toRotationMatrix();
+    pose.translation() = position;
+    for (std::size_t i = 0; i < instance.bodies.size(); ++i) {
+      instance.bodies[i]->place(pose * g.poses[i], grow);
+    }
+    instance.centre = position.head<2>();
+    instance.radius = object.horizontalRadius;
+    instance.circle = object.radiusBoundsGeometry && std::isfinite(object.horizontalRadius) &&
+                      aboutWorldZ(orientation * object.initOrientation.conjugate());
+  }
+
+  /// True when the two bodies come closer than the margin (penetrate, with a zero margin).
+  bool tooClose(const Body& a, const Body& b) {
+    result.clear();
+    fcl::collide(&a, &b, boolRequest, result);
+    if (result.isCollision()) {
+      result.clear();
+      fcl::collide(&a, &b, depthRequest, result);
+      double depth = 0.0;
+      for (std::size_t i = 0; i < result.numContacts(); ++i) {
+        depth = std::max(depth, result.getContact(i).penetration_depth);
+      }
+      // Signed distance -depth against margin - tolerance: with a zero margin a contact
+      // counts only beyond the tolerance; with a positive one any contact counts.
+      return -depth < threshold;
+    }
+    if (threshold <= 0.0) {
+      return false;
+    }
+    distance.clear();
+    fcl::distance(&a, &b, distanceRequest, distance);
+    return distance.min_distance < threshold;
+  }
+
+  static bool onPair(fcl_compat::CollisionObject* a, fcl_compat::CollisionObject* b, void* data) {
+    Query& query = *static_cast<Query*>(data);
+    const bool aIsCandidate = a->getUserData() == query.candidate;
+    const Body& mine = static_cast<const Body&>(aIsCandidate ? *a : *b);
+    const Body& other = static_cast<const Body&>(aIsCandidate ? *b : *a);
+    const Instance& placed = *static_cast<const Instance*>(other.getUserData());
+    const Instance& candidate = *query.candidate;
+    if (candidate.circle && placed.circle) {
+      const double reach = candidate.radius + placed.radius + query.impl->margin;
+      if ((candidate.centre - placed.centre).squaredNorm() > reach * reach) {
+        return false;  // the circles bound both: no point of one comes within the margin
+      }
+    }
+    if (query.impl->tooClose(mine, other)) {
+      query.hit = placed.entry;
+      return true;  // stops the broadphase
+    }
+    return false;
+  }
+
+  double margin;
+  double threshold;  ///< reject below this signed distance [m]
+  std::unordered_map<const ObjectModel*, std::unique_ptr<ObjectGeometry>> objects;
+  const ObjectModel* lastObject = nullptr;  ///< the object of lastGeometry
+  ObjectGeometry* lastGeometry = nullptr;
+  std::vector<Body*> bodies;  ///< placed bodies of the scene, in entry order
+  bool treeMode = false;      ///< bodies are in the manager too
+  std::size_t listLimit = kDefaultListLimit;
+  std::unique_ptr<fcl_compat::TreeManager> manager = std::make_unique<fcl_compat::TreeManager>();
+  fcl_compat::CollisionRequest boolRequest;
+  fcl_compat::CollisionRequest depthRequest;
+  fcl_compat::DistanceRequest distanceRequest;
+  fcl_compat::CollisionResult result;   ///< scratch of tooClose()
+  fcl_compat::DistanceResult distance;  ///< scratch of tooClose()
+};
+
+FclChecker::FclChecker(double margin, std::size_t listLimit) {
+  if (!std::isfinite(margin) || margin < 0.0) {
+    throw std::invalid_argument("collision margin must be finite and non-negative, got " +
+                                std::to_string(margin));
+  }
+  impl_ = std::make_unique<Impl>(margin);
+  impl_->listLimit = listLimit;
+}
+
+FclChecker::~FclChecker() = default;
+
+double FclChecker::margin() const { return impl_->margin; }
+
+void FclChecker::clear() {
+  if (impl_->treeMode) {
+    impl_->manager->clear();
+    impl_->treeMode = false;
+  }
+  impl_->bodies.clear();
+  for (auto& entry : impl_->objects) {
+    entry.second->used = 0;
+  }
+}
+
+void FclChecker::added(const std::vector<PlacedEntry>& entries, std::size_t index) {
+  const PlacedEntry& entry = entries.at(index);
+  Impl::ObjectGeometry& g = impl_->geometryOf(*entry.object);
+  if (g.used == g.placed.size()) {
+    g.placed.push_back(std::make_unique<Impl::Instance>());
+    Impl::initInstance(g, *g.placed.back());
+  }
+  Impl::Instance& instance = *g.placed[g.used++];
+  Impl::place(g, *entry.object, instance, entry.position, entry.orientation, 0.0);
+  instance.entry = static_cast<std::ptrdiff_t>(index);
+  for (const std::unique_ptr<Body>& body : instance.bodies) {
+    impl_->registerBody(body.get());
+  }
+}
+
+std::ptrdiff_t FclChecker::firstCollision(const std::vector<PlacedEntry>& /*entries*/,
+                                          const Candidate& candidate) {
+  if (impl_->bodies.empty()) {
+    return kNone;
+  }
+  Impl::ObjectGeometry& g = impl_->geometryOf(*candidate.object);
+  Impl::place(g, *candidate.object, g.candidate, candidate.position, candidate.orientation,
+              impl_->margin);
+  Impl::Query query{impl_.get(), &g.candidate, kNone};
+  impl_->collide(g.candidate, query);
+  return query.hit;
+}
+
+}  // namespace placement_samplers

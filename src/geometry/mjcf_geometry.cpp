@@ -1,0 +1,330 @@
+#include "placement_samplers/geometry/mjcf_geometry.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/input_files.hpp"
+#include "placement_samplers/limits.hpp"
+#include "placement_samplers/text.hpp"
+
+namespace placement_samplers {
+namespace {
+
+// MuJoCo's default error handler ends the process; ours turns an error into an exception.
+// MuJoCo's handlers are global: one load at a time.
+std::mutex mujocoMutex;
+
+[[noreturn]] void throwMujocoError(const char* message) { throw std::runtime_error(message); }
+void ignoreMujocoWarning(const char*) {}
+
+struct ModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
+
+const char* nameOf(const mjModel& m, int address) { return m.names + address; }
+
+Eigen::Isometry3d bodyPose(const mjModel& m, int body) {
+  const mjtNum* p = m.body_pos + 3 * body;
+  const mjtNum* q = m.body_quat + 4 * body;  // w, x, y, z
+  return Eigen::Translation3d(p[0], p[1], p[2]) *
+         Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
+}
+
+/// Pose of @p body in the frame of @p top, through the chain of parents.
+Eigen::Isometry3d poseInTop(const mjModel& m, int body, int top) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  while (body != top && body > 0) {
+    pose = bodyPose(m, body) * pose;
+    body = m.body_parentid[body];
+  }
+  return pose;
+}
+
+/// The body directly below the world that @p body belongs to (0 for the world itself).
+int topLevelBodyOf(const mjModel& m, int body) {
+  while (body > 0 && m.body_parentid[body] != 0) {
+    body = m.body_parentid[body];
+  }
+  return body;
+}
+
+Shape meshShape(const mjModel& m, int meshId, const std::string& path, std::size_t& triangles,
+                std::size_t maxTriangles) {
+  const int faces = m.mesh_facenum[meshId];
+  triangles += static_cast<std::size_t>(faces);
+  if (triangles > maxTriangles) {
+    throw ConfigError("its meshes have more than " + std::to_string(maxTriangles) +
+                      " triangles (limit)");
+  }
+  auto mesh = std::make_shared<Mesh>();
+  const int firstVertex = m.mesh_vertadr[meshId];
+  const int vertices = m.mesh_vertnum[meshId];
+  mesh->vertices.reserve(static_cast<std::size_t>(vertices));
+  for (int v = 0; v < vertices; ++v) {
+    const float* p = m.mesh_vert + 3 * (firstVertex + v);
+    mesh->vertices.emplace_back(p[0], p[1], p[2]);
+  }
+  const int firstFace = m.mesh_faceadr[meshId];
+  mesh->triangles.reserve(static_cast<std::size_t>(faces));
+  for (int f = 0; f < faces; ++f) {
+    const int* t = m.mesh_face + 3 * (firstFace + f);
+    mesh->triangles.emplace_back(t[0], t[1], t[2]);
+  }
+  mesh->source =
+      (path.empty() ? std::string("mjcf_param") : path) + "#" + nameOf(m, m.name_meshadr[meshId]);
+  Shape shape;
+  shape.type = ShapeType::Mesh;
+  shape.mesh = std::move(mesh);
+  return shape;
+}
+
+Eigen::Vector3d sitePos(const mjModel& m, const char* name, int top) {
+  const int site = mj_name2id(&m, mjOBJ_SITE, name);
+  if (site < 0) {
+    throw ConfigError(std::string("no site '") + name +
+                      "' (robosuite reads bottom_site, top_site and horizontal_radius_site)");
+  }
+  const int body = m.site_bodyid[site];
+  if (topLevelBodyOf(m, body) != top) {
+    throw ConfigError(std::string("site '") + name + "' is not in the top-level body");
+  }
+  const mjtNum* p = m.site_pos + 3 * site;
+  return poseInTop(m, body, top) * Eigen::Vector3d(p[0], p[1], p[2]);
+}
+
+/// An 8 x 8 grey PNG: what every texture file is read as. Textures change no geometry, and
+/// robosuite's files name textures a user may not have (../textures/...).
+constexpr unsigned char kPlaceholderPng[] = {
+    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
+    0x52, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00, 0x08, 0x08, 0x02, 0x00, 0x00, 0x00, 0x4b,
+    0x6d, 0x29, 0xdc, 0x00, 0x00, 0x00, 0x0f, 0x49, 0x44, 0x41, 0x54, 0x78, 0xda, 0x63, 0x68,
+    0xc0, 0x01, 0x18, 0x86, 0x96, 0x04, 0x00, 0x82, 0xf3, 0x60, 0x01, 0x25, 0x95, 0xb3, 0x63,
+    0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+
+struct VfsDeleter {
+  void operator()(mjVFS* vfs) const {
+    mj_deleteVFS(vfs);
+    delete vfs;
+  }
+};
+using VfsPtr = std::unique_ptr<mjVFS, VfsDeleter>;
+
+/// A virtual file system in which every texture file the document names is the placeholder:
+/// MuJoCo looks files up there first, by their name without the path. The `file` attributes of
+/// <texture> elements are found by a scan of the text (not of included files).
+VfsPtr textureVfs(const std::string& text) {
+  VfsPtr vfs(new mjVFS);
+  mj_defaultVFS(vfs.get());
+  std::size_t at = 0;
+  while ((at = text.find("<texture", at)) != std::string::npos) {
+    const std::size_t end = text.find('>', at);
+    const std::string element =
+        text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    at += 8;
+    const std::size_t file = element.find(" file=");
+    if (file == std::string::npos || file + 7 >= element.size()) {
+      continue;
+    }
+    const char quote = element[file + 6];
+    const std::size_t close = element.find(quote, file + 7);
+    if ((quote != '"' && quote != '\'') || close == std::string::npos) {
+      continue;
+    }
+    std::string name = element.substr(file + 7, close - file - 7);
+    name = name.substr(
+        name.find_last_of("/\\") == std::string::npos ? 0 : name.find_last_of("/\\") + 1);
+    if (name.empty() || name.size() >= mjMAXVFSNAME ||
+        mj_findFileVFS(vfs.get(), name.c_str()) >= 0) {
+      continue;
+    }
+    if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(), sizeof(kPlaceholderPng)) != 0) {
+      break;  // full: the remaining textures must exist
+    }
+    const int index = mj_findFileVFS(vfs.get(), name.c_str());
+    std::memcpy(vfs->filedata[index], kPlaceholderPng, sizeof(kPlaceholderPng));
+  }
+  return vfs;
+}
+
+/// The name of the document's root element ("" when there is none): what is after the first
+/// '<' that does not open a declaration, comment or processing instruction.
+std::string rootElement(const std::string& text) {
+  std::size_t at = 0;
+  while ((at = text.find('<', at)) != std::string::npos) {
+    if (text.compare(at, 4, "<!--") == 0) {
+      const std::size_t end = text.find("-->", at);
+      at = end == std::string::npos ? std::string::npos : end + 3;
+      if (at == std::string::npos) {
+        return "";
+      }
+      continue;
+    }
+    if (at + 1 < text.size() && (text[at + 1] == '?' || text[at + 1] == '!')) {
+      ++at;
+      continue;
+    }
+    std::size_t end = at + 1;
+    while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) ||
+                                 text[end] == '_' || text[end] == '-' || text[end] == ':')) {
+      ++end;
+    }
+    return text.substr(at + 1, end - at - 1);
+  }
+  return "";
+}
+
+/// Name of the document in MuJoCo's virtual file system when it comes as text.
+constexpr const char* kTextName = "placement_samplers_mjcf_param.xml";
+
+/// Loads @p text; @p path is its file, or "" when the text is all there is (it is then read
+/// from the virtual file system).
+MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_t maxTriangles);
+
+}  // namespace
+
+MjcfObject loadMjcfObject(const std::string& path, std::size_t maxTriangles) {
+  // The same limits as a URDF file, checked before MuJoCo's parser recurses over the document.
+  return loadMjcf(readFileBounded(path, limits::kUrdfBytes, "the MJCF file"), path, maxTriangles);
+}
+
+MjcfObject loadMjcfText(const std::string& text, std::size_t maxTriangles) {
+  if (text.size() > limits::kUrdfBytes) {
+    throw ConfigError("the MJCF text is larger than the limit of " +
+                      std::to_string(limits::kUrdfBytes) + " bytes");
+  }
+  return loadMjcf(text, "", maxTriangles);
+}
+
+namespace {
+
+MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_t maxTriangles) {
+  const int depth = xmlNestingDepth(text, limits::kXmlDepth);
+  if (depth > limits::kXmlDepth) {
+    throw ConfigError("the MJCF file is nested more than " + std::to_string(limits::kXmlDepth) +
+                      " levels deep (limit)");
+  }
+  // MuJoCo also reads URDF: a robosuite object is MJCF.
+  const std::string root = rootElement(text);
+  if (root != "mujoco") {
+    throw ConfigError("not an MJCF file: its root element is " +
+                      (root.empty() ? std::string("missing") : "<" + escapeText(root) + ">") +
+                      ", expected <mujoco>");
+  }
+  ModelPtr model;
+  {
+    std::lock_guard<std::mutex> lock(mujocoMutex);
+    void (*previousError)(const char*) = mju_user_error;
+    void (*previousWarning)(const char*) = mju_user_warning;
+    mju_user_error = throwMujocoError;
+    mju_user_warning = ignoreMujocoWarning;
+    std::array<char, 1024> error{};
+    try {
+      const VfsPtr vfs = textureVfs(text);
+      std::string file = path;
+      if (path.empty()) {
+        file = kTextName;
+        if (mj_makeEmptyFileVFS(vfs.get(), kTextName, static_cast<int>(text.size())) != 0) {
+          throw std::runtime_error("too many texture files");
+        }
+        std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kTextName)], text.data(), text.size());
+      }
+      model.reset(
+          mj_loadXML(file.c_str(), vfs.get(), error.data(), static_cast<int>(error.size())));
+    } catch (const std::exception& e) {
+      std::snprintf(error.data(), error.size(), "%s", e.what());
+    }
+    mju_user_error = previousError;
+    mju_user_warning = previousWarning;
+    if (!model) {
+      std::string reason = error.data();
+      while (!reason.empty() && (reason.back() == '\n' || reason.back() == ' ')) {
+        reason.pop_back();
+      }
+      // MuJoCo's message has lines: "Error: ... \nObject name = ..., line = ...".
+      for (std::size_t at = reason.find('\n'); at != std::string::npos; at = reason.find('\n')) {
+        reason.replace(at, 1, "; ");
+      }
+      throw ConfigError("MuJoCo could not load it: " + escapeText(reason));
+    }
+  }
+  const mjModel& m = *model;
+  if (m.nbody < 2) {
+    throw ConfigError("no body in its worldbody (robosuite objects have one top-level body)");
+  }
+  const int top = 1;  // the first body below the world
+  MjcfObject out;
+  out.bottomOffset = sitePos(m, "bottom_site", top);
+  out.topOffset = sitePos(m, "top_site", top);
+  // robosuite's MujocoXMLObject.horizontal_radius is the site's x coordinate alone.
+  out.horizontalRadius = sitePos(m, "horizontal_radius_site", top).x();
+  if (!(out.horizontalRadius >= 0.0)) {
+    throw ConfigError("horizontal_radius_site has a negative x (" +
+                      std::to_string(out.horizontalRadius) +
+                      "); robosuite takes x as the horizontal radius");
+  }
+
+  std::size_t triangles = 0;
+  for (int g = 0; g < m.ngeom; ++g) {
+    const int body = m.geom_bodyid[g];
+    if (topLevelBodyOf(m, body) != top) {
+      continue;  // another top-level body: not this object
+    }
+    if (m.geom_contype[g] == 0 && m.geom_conaffinity[g] == 0) {
+      ++out.visualGeoms;  // robosuite's visual geoms collide with nothing
+      continue;
+    }
+    const mjtNum* s = m.geom_size + 3 * g;
+    Shape shape;
+    switch (m.geom_type[g]) {
+      case mjGEOM_BOX:
+        shape = Shape::box(Eigen::Vector3d(2 * s[0], 2 * s[1], 2 * s[2]));
+        break;
+      case mjGEOM_SPHERE:
+        shape = Shape::sphere(s[0]);
+        break;
+      case mjGEOM_CYLINDER:
+        shape = Shape::cylinder(s[0], 2 * s[1]);
+        break;
+      case mjGEOM_CAPSULE:
+        shape = Shape::capsule(s[0], 2 * s[1]);
+        break;
+      case mjGEOM_MESH:
+        shape = meshShape(m, m.geom_dataid[g], path, triangles, maxTriangles);
+        break;
+      default: {
+        const char* name = nameOf(m, m.name_geomadr[g]);
+        std::ostringstream why;
+        why << "geom " << (name[0] != '\0' ? quoteText(name) : std::to_string(g))
+            << " has a type this loader does not support (" << m.geom_type[g]
+            << "); boxes, spheres, cylinders, capsules and meshes are";
+        throw ConfigError(why.str());
+      }
+    }
+    const mjtNum* p = m.geom_pos + 3 * g;
+    const mjtNum* q = m.geom_quat + 4 * g;
+    shape.pose = poseInTop(m, body, top) * Eigen::Translation3d(p[0], p[1], p[2]) *
+                 Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
+    out.shapes.push_back(std::move(shape));
+  }
+  if (out.shapes.empty()) {
+    throw ConfigError(
+        "no collision geom in its top-level body (every geom has contype and "
+        "conaffinity 0)");
+  }
+  return out;
+}
+
+}  // namespace
+
+}  // namespace placement_samplers

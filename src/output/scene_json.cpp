@@ -1,0 +1,245 @@
+#include "placement_samplers/output/scene_json.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+
+#include "placement_samplers/sampling/sequential_composite_sampler.hpp"
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
+
+namespace placement_samplers {
+namespace {
+
+/// Shortest form that reads back as the same double (std::to_chars without a format).
+void appendNumber(std::string& out, double v) {
+  char buffer[32];
+  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  out.append(buffer, r.ptr);
+}
+
+void appendInteger(std::string& out, std::uint64_t v) {
+  char buffer[24];
+  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  out.append(buffer, r.ptr);
+}
+
+void appendVector(std::string& out, const double* values, int count) {
+  out += '[';
+  for (int k = 0; k < count; ++k) {
+    if (k > 0) {
+      out += ", ";
+    }
+    appendNumber(out, values[k]);
+  }
+  out += ']';
+}
+
+void appendBounds(std::string& out, const ObjectModel& object) {
+  out += "\"horizontal_radius\": ";
+  appendNumber(out, object.horizontalRadius);
+  out += ", \"bottom_offset\": ";
+  appendVector(out, object.bottomOffset.data(), 3);
+  out += ", \"top_offset\": ";
+  appendVector(out, object.topOffset.data(), 3);
+}
+
+void appendSampler(std::string& out, const PlacementSampler& sampler);
+
+void appendSampleArgs(std::string& out, const SampleArgs& args) {
+  out += '{';
+  bool first = true;
+  if (args.reference && args.reference->kind != Reference::Kind::Default) {
+    out += "\"reference\": ";
+    if (args.reference->kind == Reference::Kind::Name) {
+      appendJsonString(out, args.reference->name);
+    } else {
+      appendVector(out, args.reference->point.data(), 3);
+    }
+    first = false;
+  }
+  if (args.onTop) {
+    out += first ? "" : ", ";
+    out += *args.onTop ? "\"on_top\": true" : "\"on_top\": false";
+  }
+  out += '}';
+}
+
+void appendUniform(std::string& out, const UniformRandomSampler& sampler) {
+  const UniformSamplerParams& p = sampler.params();
+  out += "{\"type\": \"uniform\", \"name\": ";
+  appendJsonString(out, sampler.name());
+  out += ", \"objects\": [";
+  const std::vector<ObjectPtr> objects = sampler.objects();
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    out += i == 0 ? "" : ", ";
+    appendJsonString(out, objects[i]->name);
+  }
+  out += "], \"x_range\": ";
+  appendVector(out, p.xRange.data(), 2);
+  out += ", \"y_range\": ";
+  appendVector(out, p.yRange.data(), 2);
+  out += ", \"rotation\": ";
+  if (p.rotation.kind == RotationSpec::Kind::Full) {
+    out += "null";
+  } else if (p.rotation.kind == RotationSpec::Kind::Fixed) {
+    appendNumber(out, p.rotation.low);
+  } else {
+    const double range[2] = {p.rotation.low, p.rotation.high};
+    appendVector(out, range, 2);
+  }
+  out += ", \"rotation_axis\": \"";
+  out += "xyz"[p.rotationAxis];
+  out += p.ensureObjectBoundaryInRange ? "\", \"ensure_object_boundary_in_range\": true"
+                                       : "\", \"ensure_object_boundary_in_range\": false";
+  out += p.ensureValidPlacement ? ", \"ensure_valid_placement\": true"
+                                : ", \"ensure_valid_placement\": false";
+  out += ", \"reference_pos\": ";
+  appendVector(out, p.referencePos.data(), 3);
+  out += ", \"z_offset\": ";
+  appendNumber(out, p.zOffset);
+  out += ", \"max_attempts\": ";
+  appendInteger(out, p.maxAttempts);
+  out += p.hides ? ", \"hides\": true}" : ", \"hides\": false}";
+}
+
+void appendSampler(std::string& out, const PlacementSampler& sampler) {
+  if (const auto* uniform = dynamic_cast<const UniformRandomSampler*>(&sampler)) {
+    appendUniform(out, *uniform);
+    return;
+  }
+  const auto& composite = dynamic_cast<const SequentialCompositeSampler&>(sampler);
+  out += "{\"type\": \"sequential\", \"name\": ";
+  appendJsonString(out, composite.name());
+  out += ", \"samplers\": [";
+  bool first = true;
+  for (const SequentialCompositeSampler::Child& child : composite.children()) {
+    out += first ? "{\"sampler\": " : ", {\"sampler\": ";
+    first = false;
+    appendSampler(out, *child.sampler);
+    out += ", \"sample_args\": ";
+    appendSampleArgs(out, child.args);
+    out += '}';
+  }
+  out += "]}";
+}
+
+}  // namespace
+
+std::string configToJson(const SceneConfig& config) {
+  std::string out = "{\"objects\": {";
+  for (std::size_t i = 0; i < config.objects.size(); ++i) {
+    const ObjectModel& object = *config.objects[i];
+    out += i == 0 ? "" : ", ";
+    appendJsonString(out, object.name);
+    out += ": {";
+    appendBounds(out, object);
+    out += ", \"init_orientation\": ";
+    appendVector(out, object.initOrientation.coeffs().data(), 4);
+    out += '}';
+  }
+  out += "}, \"fixtures\": [";
+  for (std::size_t i = 0; i < config.fixtures.size(); ++i) {
+    const FixtureSpec& f = config.fixtures[i];
+    out += i == 0 ? "{\"name\": " : ", {\"name\": ";
+    appendJsonString(out, f.name);
+    out += ", \"position\": ";
+    appendVector(out, f.position.data(), 3);
+    out += ", \"orientation\": ";
+    appendVector(out, f.orientation.coeffs().data(), 4);
+    out += ", ";
+    appendBounds(out, *f.object);
+    out += '}';
+  }
+  out += "], \"hidden\": [";
+  for (std::size_t i = 0; i < config.hidden.size(); ++i) {
+    out += i == 0 ? "" : ", ";
+    appendJsonString(out, config.hidden[i]);
+  }
+  out += "], \"sampler\": ";
+  appendSampler(out, *config.root);
+  out += '}';
+  return out;
+}
+
+void appendJsonString(std::string& out, std::string_view text) {
+  out += '"';
+  // Names are plain almost always: one append when nothing needs escaping.
+  const bool plain = std::all_of(text.begin(), text.end(), [](char c) {
+    return static_cast<unsigned char>(c) >= 0x20 && c != '"' && c != '\\';
+  });
+  if (plain) {
+    out.append(text);
+    out += '"';
+    return;
+  }
+  for (const char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buffer[8];
+          std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+          out += buffer;
+        } else {
+          out += c;
+        }
+    }
+  }
+  out += '"';
+}
+
+void appendSceneJson(std::string& out, const SceneResult& scene) {
+  out += "{\"scene\": ";
+  appendInteger(out, scene.index);
+  out += ", \"seed\": ";
+  appendInteger(out, scene.seed);
+  out += scene.success ? ", \"success\": true" : ", \"success\": false";
+  out += ", \"message\": ";
+  appendJsonString(out, scene.message);
+  out += ", \"placements\": [";
+  for (std::size_t i = 0; i < scene.placements.size(); ++i) {
+    const ObjectPlacement& p = scene.placements[i];
+    out += i == 0 ? "{\"name\": " : ", {\"name\": ";
+    appendJsonString(out, p.name);
+    out += ", \"sampler\": ";
+    appendJsonString(out, p.sampler);
+    out += ", \"position\": [";
+    for (int k = 0; k < 3; ++k) {
+      if (k > 0) {
+        out += ", ";
+      }
+      appendNumber(out, p.position[k]);
+    }
+    out += "], \"orientation\": [";
+    const Eigen::Vector4d q = p.orientation.coeffs();  // x, y, z, w
+    for (int k = 0; k < 4; ++k) {
+      if (k > 0) {
+        out += ", ";
+      }
+      appendNumber(out, q[k]);
+    }
+    out += "], \"attempts\": ";
+    appendInteger(out, p.attempts);
+    out += '}';
+  }
+  out += "]}";
+}
+
+std::string sceneToJson(const SceneResult& scene) {
+  std::string out;
+  appendSceneJson(out, scene);
+  return out;
+}
+
+}  // namespace placement_samplers

@@ -1,0 +1,50 @@
+#include "placement_samplers/sampling/sample_context.hpp"
+
+#include <algorithm>
+
+namespace placement_samplers {
+
+SampleContext::SampleContext(Engine& engine, CollisionChecker& checker, std::uint32_t maxAttempts)
+    : engine_(&engine), checker_(checker), maxAttempts_(maxAttempts) {}
+
+void SampleContext::clear() {
+  entries_.clear();
+  placements_.clear();
+  failure_.reset();
+  checker_.clear();
+}
+
+void SampleContext::addFixture(std::string_view name, const ObjectModel* object,
+                               const Eigen::Vector3d& position,
+                               const Eigen::Quaterniond& orientation) {
+  entries_.push_back(PlacedEntry{name, object, position, orientation, true});
+  checker_.added(entries_, entries_.size() - 1);
+}
+
+void SampleContext::addPlacement(std::string_view sampler, const Candidate& candidate,
+                                 std::uint32_t attempts, bool hidden) {
+  // Built whole rather than default-constructed and assigned: the default construction zeroed
+  // both structs first, a tenth of placing an object.
+  const ObjectModel* object = candidate.object;
+  placements_.push_back(ObjectPlacement{object->name, sampler, candidate.position,
+                                        candidate.orientation, attempts, object, hidden});
+  entries_.push_back(
+      PlacedEntry{object->name, object, candidate.position, candidate.orientation, false});
+  checker_.added(entries_, entries_.size() - 1);
+}
+
+const PlacedEntry* SampleContext::find(const std::string& name) const {
+  for (const PlacedEntry& entry : entries_) {
+    if (entry.name == name) {
+      return &entry;
+    }
+  }
+  return nullptr;
+}
+
+std::vector<std::uint32_t>& SampleContext::blockerCounts() {
+  blockerCounts_.assign(entries_.size(), 0);
+  return blockerCounts_;
+}
+
+}  // namespace placement_samplers

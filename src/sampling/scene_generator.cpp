@@ -1,0 +1,338 @@
+#include "placement_samplers/sampling/scene_generator.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <thread>
+#include <unordered_set>
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
+#include "placement_samplers/collision/make_collision_checker.hpp"
+#include "placement_samplers/config/object_config.hpp"
+#include "placement_samplers/text.hpp"
+#include "placement_samplers/geometry/unit_quaternion.hpp"
+#include "sampling/parallel.hpp"
+
+namespace placement_samplers {
+
+/// Per-thread state, reused from scene to scene: engine, checker and buffers.
+class SceneGenerator::Worker {
+ public:
+  Worker(const PreparedRequest& request, double margin)
+      : request_(request),
+        checker_(makeCollisionChecker(request.collisionCheck, margin)),
+        context_(engine_, *checker_, request.maxAttempts),
+        objects_(request.sampler->objects().size()) {}
+
+  void setDeadline(std::optional<std::chrono::steady_clock::time_point> deadline) {
+    context_.setDeadline(deadline);
+  }
+  bool expired() const { return context_.expired(); }
+
+  /// Scene @p index of request seed @p seed: numpy's default_rng([seed, index]).
+  SceneResult run(std::uint64_t seed, std::uint64_t index) {
+    engine_ = sceneEngine(seed, index);
+    context_.setScene(seed, index);
+    return sample(seed, index);
+  }
+
+ private:
+  SceneResult sample(std::uint64_t seed, std::uint64_t index) {
+    context_.clear();
+    SceneResult result;
+    result.seed = seed;
+    result.index = index;
+    const std::vector<FixtureSpec>& fixtures = request_.fixtures;
+    for (std::size_t i = 0; i < fixtures.size(); ++i) {
+      // Adding thousands of fixtures to FCL's broadphase takes long too: the clock covers it.
+      if ((i & 63u) == 63u && expired()) {
+        result.message = "not sampled: the request ran out of time while adding its " +
+                         std::to_string(fixtures.size()) + " fixtures";
+        return result;
+      }
+      const FixtureSpec& f = fixtures[i];
+      context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
+    }
+    // Each result takes the placements away: one allocation of the right size, not a growth.
+    context_.placements().reserve(objects_);
+    result.success = request_.sampler->sample(context_, request_.reference, request_.onTop);
+    if (!result.success) {
+      result.message = context_.failure() ? context_.failure()->message : "sampling failed";
+    }
+    result.placements = std::move(context_.placements());
+    return result;
+  }
+
+  const PreparedRequest& request_;
+  Engine engine_;
+  std::unique_ptr<CollisionChecker> checker_;
+  SampleContext context_;
+  std::size_t objects_;  ///< objects the sampler places
+};
+
+SceneGenerator::SceneGenerator(std::shared_ptr<const SceneConfig> config)
+    : config_(std::move(config)) {
+  if (!config_ || !config_->root) {
+    throw std::invalid_argument("SceneGenerator needs a built configuration");
+  }
+}
+
+namespace {
+
+/// Finite and within +-limits::kCoordinate: sums of such values stay finite.
+bool isBounded(const Eigen::Vector3d& v) {
+  return v.allFinite() && (v.array().abs() <= limits::kCoordinate).all();
+}
+
+std::string coordinateLimit() {
+  std::ostringstream out;
+  out << "finite and within [-" << limits::kCoordinate << ", " << limits::kCoordinate << "] m";
+  return out.str();
+}
+
+}  // namespace
+
+namespace {
+
+/// True when a call-level argument (@p field of SampleArgs) reaches a uniform sampler below
+/// @p sampler: some path to it has no sample_args that set the field.
+template <typename Field>
+bool reachesUniform(const PlacementSampler& sampler, Field SampleArgs::*field) {
+  const auto* composite = dynamic_cast<const SequentialCompositeSampler*>(&sampler);
+  if (composite == nullptr) {
+    return true;
+  }
+  for (const SequentialCompositeSampler::Child& child : composite->children()) {
+    if (!(child.args.*field) && reachesUniform(*child.sampler, field)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
+  // The request's clock starts here: checking thousands of fixtures takes time too.
+  const auto start = std::chrono::steady_clock::now();
+  const SceneConfig& config = *config_;
+  PreparedRequest prepared;
+  prepared.collisionCheck = request.collisionCheck.value_or(config.collisionCheck);
+  prepared.maxAttempts = request.maxAttempts;
+  if (!std::isfinite(request.maxSeconds) || request.maxSeconds < 0.0) {
+    throw RequestError("the time limit must be a non-negative number of seconds");
+  }
+  if (request.maxSeconds > limits::kRequestSeconds) {
+    std::ostringstream out;
+    out << "the time limit must be at most " << limits::kRequestSeconds << " s, got "
+        << request.maxSeconds;
+    throw RequestError(out.str());
+  }
+  prepared.maxSeconds = request.maxSeconds;
+  if (request.maxSeconds > 0.0) {
+    prepared.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                    std::chrono::duration<double>(request.maxSeconds));
+  }
+  if (request.fixtures.size() > config.maxFixturesPerRequest) {
+    throw RequestError("the request has " + std::to_string(request.fixtures.size()) +
+                       " fixtures, more than max_fixtures_per_request (" +
+                       std::to_string(config.maxFixturesPerRequest) + ")");
+  }
+  try {
+    checkCollisionMode(prepared.collisionCheck, config.collisionMargin);
+  } catch (const ConfigError& e) {
+    throw RequestError(e.what());
+  }
+  prepared.fixtures = config.fixtures;
+  prepared.fixtures.reserve(config.fixtures.size() + request.fixtures.size());
+  // Fixture names seen so far: a set, so that many fixtures cost near-linear time.
+  std::unordered_set<std::string_view> fixtureNames;
+  for (const FixtureSpec& f : config.fixtures) {
+    fixtureNames.insert(f.name);
+  }
+
+  for (std::size_t i = 0; i < request.fixtures.size(); ++i) {
+    const RequestFixture& f = request.fixtures[i];
+    if ((i & 63u) == 63u && prepared.deadline &&
+        std::chrono::steady_clock::now() > *prepared.deadline) {
+      throw RequestError("the request ran out of time while checking its " +
+                         std::to_string(request.fixtures.size()) + " fixtures");
+    }
+    const std::string label = "fixture " + quoteText(f.name);
+    if (!isValidName(f.name)) {
+      throw RequestError("fixture name " + quoteText(f.name) + " must match [A-Za-z0-9_-]+");
+    }
+    if (config.findObject(f.name) != nullptr) {
+      throw RequestError(label + ": the name is already a configured object");
+    }
+    if (fixtureNames.count(f.name) != 0) {
+      throw RequestError(label + ": the name is used twice");
+    }
+    if (!f.position.allFinite()) {
+      throw RequestError(label + ": position must be finite");
+    }
+    if (!isBounded(f.position)) {
+      throw RequestError(label + ": position must be " + coordinateLimit());
+    }
+    if (!isUnitQuaternion(f.orientation)) {
+      throw RequestError(label + ": orientation must be a finite unit quaternion");
+    }
+    FixtureSpec spec;
+    spec.name = f.name;
+    spec.objectName = f.object;
+    spec.position = f.position;
+    spec.orientation = f.orientation.normalized();
+    if (!f.object.empty()) {
+      const ObjectModel* object = config.findObject(f.object);
+      if (object == nullptr) {
+        throw RequestError(label + ": unknown object " + quoteText(f.object));
+      }
+      spec.object = std::make_shared<ObjectModel>(reorientedObject(*object, spec.orientation));
+    } else {
+      if (!f.shape) {
+        throw RequestError(label + ": give an object name or a shape");
+      }
+      try {
+        validateShape(*f.shape);
+      } catch (const ConfigError& e) {
+        throw RequestError(label + ": " + e.what());
+      }
+      spec.object = std::make_shared<ObjectModel>(makeObject(f.name, {*f.shape}, spec.orientation));
+    }
+    prepared.fixtures.push_back(std::move(spec));
+    // A view of the name in the request, which outlives this function.
+    fixtureNames.insert(f.name);
+  }
+
+  SampleArgs args;
+  if (request.sampler.empty()) {
+    prepared.sampler = config.root.get();
+  } else {
+    prepared.sampler = config.root->find(request.sampler, &args);
+    if (prepared.sampler == nullptr) {
+      std::vector<const PlacementSampler*> all;
+      config.root->collectSamplers(all);
+      std::string names;
+      for (const PlacementSampler* s : all) {
+        if (names.size() > 2000) {
+          names += ", ...";
+          break;
+        }
+        names += (names.empty() ? "" : ", ") + escapeText(s->name());
+      }
+      throw RequestError("unknown sampler " + quoteText(request.sampler) +
+                         " (configured: " + names + ")");
+    }
+  }
+
+  const Reference& reference = request.reference;
+  if (reference.kind == Reference::Kind::Point && !reference.point.allFinite()) {
+    throw RequestError("reference_point must be finite");
+  }
+  if (reference.kind == Reference::Kind::Point && !isBounded(reference.point)) {
+    throw RequestError("reference_point must be " + coordinateLimit());
+  }
+  if (reference.kind == Reference::Kind::Name) {
+    const bool known =
+        config.findObject(reference.name) != nullptr || fixtureNames.count(reference.name) != 0;
+    if (!known) {
+      throw RequestError("unknown reference " + quoteText(reference.name) +
+                         " (not a configured object or a fixture)");
+    }
+  }
+  // A sampler run alone keeps the sample_args its parent gives it; the call fills in the rest.
+  prepared.reference = args.reference ? *args.reference : reference;
+  prepared.onTop = args.onTop ? *args.onTop : request.onTop.value_or(true);
+  if (reference.kind != Reference::Kind::Default &&
+      (args.reference || !reachesUniform(*prepared.sampler, &SampleArgs::reference))) {
+    prepared.notes.push_back(
+        "the call's reference was not used: every sampler it would reach sets its own in "
+        "sample_args");
+  }
+  if (request.onTop && (args.onTop || !reachesUniform(*prepared.sampler, &SampleArgs::onTop))) {
+    prepared.notes.push_back(
+        "the call's on_top was not used: every sampler it would reach sets its own in "
+        "sample_args");
+  }
+  return prepared;
+}
+
+std::uint64_t SceneGenerator::placementsPerScene(const PreparedRequest& request) const {
+  return request.sampler->objects().size();
+}
+
+void SceneGenerator::checkAnswerSize(const PreparedRequest& request,
+                                     std::uint64_t numScenes) const {
+  const std::uint64_t perScene = placementsPerScene(request);
+  const std::uint64_t limit = config_->maxPlacementsPerRequest;
+  // perScene * numScenes > limit, without overflowing.
+  if (perScene != 0 && numScenes > limit / perScene) {
+    throw RequestError(std::to_string(numScenes) + " scenes of " + std::to_string(perScene) +
+                       " placements each exceed max_placements_per_request (" +
+                       std::to_string(limit) + "): ask for at most " +
+                       std::to_string(std::max<std::uint64_t>(limit / perScene, 1)) +
+                       " scenes per request");
+  }
+}
+
+SceneResult SceneGenerator::sampleScene(const PreparedRequest& request, std::uint64_t seed,
+                                        std::uint64_t index) const {
+  Worker worker(request, config_->collisionMargin);
+  worker.setDeadline(request.deadline);
+  return worker.run(seed, index);
+}
+
+std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& request,
+                                                      std::uint64_t seed, std::uint64_t count,
+                                                      unsigned threads) const {
+  checkAnswerSize(request, count);
+  return sampleSceneRange(request, seed, 0, count, threads);
+}
+
+std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest& request,
+                                                          std::uint64_t seed, std::uint64_t first,
+                                                          std::uint64_t count,
+                                                          unsigned threads) const {
+  if (count > 0 && count - 1 > std::numeric_limits<std::uint64_t>::max() - first) {
+    throw RequestError("first scene " + std::to_string(first) + " + " + std::to_string(count) +
+                       " scenes: scene indices must stay below 2^64");
+  }
+  std::vector<SceneResult> results(count);
+  if (threads == 0) {
+    threads = std::max(1u, std::thread::hardware_concurrency());
+  }
+  threads =
+      static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(count, 1)));
+  std::atomic<std::uint64_t> next{0};
+  const auto deadline = request.deadline;
+  auto work = [&] {
+    Worker worker(request, config_->collisionMargin);
+    worker.setDeadline(deadline);
+    // Small chunks keep the threads balanced when some scenes take many attempts.
+    constexpr std::uint64_t kChunk = 16;
+    for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
+         begin = next.fetch_add(kChunk)) {
+      const std::uint64_t end = std::min(count, begin + kChunk);
+      for (std::uint64_t i = begin; i < end; ++i) {
+        if (worker.expired()) {
+          results[i].seed = seed;
+          results[i].index = first + i;
+          results[i].message = "not sampled: the request ran out of time";
+          continue;
+        }
+        results[i] = worker.run(seed, first + i);
+      }
+    }
+  };
+  // An exception in any worker (out of memory) stops the others and reaches the caller.
+  detail::runOnThreads(threads, work, [&] { next = count; });
+  return results;
+}
+
+}  // namespace placement_samplers

@@ -1,0 +1,267 @@
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <unordered_set>
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
+#include "sampling/sin_cos.hpp"
+#include "placement_samplers/text.hpp"
+
+namespace placement_samplers {
+namespace {
+
+std::string rangeText(const Eigen::Vector2d& r) {
+  std::ostringstream out;
+  out << "[" << r[0] << ", " << r[1] << "]";
+  return out.str();
+}
+
+}  // namespace
+
+RotationSpec RotationSpec::fixed(double angle) {
+  RotationSpec r;
+  r.kind = Kind::Fixed;
+  r.low = r.high = angle;
+  return r;
+}
+
+RotationSpec RotationSpec::range(double a, double b) {
+  RotationSpec r;
+  r.kind = Kind::Range;
+  r.low = std::min(a, b);
+  r.high = std::max(a, b);
+  return r;
+}
+
+UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSamplerParams& params,
+                                           const std::vector<ObjectPtr>& objects)
+    : PlacementSampler(std::move(name)), params_(params) {
+  const std::string where = "sampler " + quoteText(this->name()) + ": ";
+  std::ostringstream bound;
+  bound << "within [-" << limits::kCoordinate << ", " << limits::kCoordinate << "] m";
+  const auto inBounds = [](double v) { return std::abs(v) <= limits::kCoordinate; };
+  for (int axis = 0; axis < 2; ++axis) {
+    const Eigen::Vector2d& r = axis == 0 ? params_.xRange : params_.yRange;
+    const std::string key = axis == 0 ? "x_range" : "y_range";
+    if (!std::isfinite(r[0]) || !std::isfinite(r[1])) {
+      throw ConfigError(where + key + " must be finite, got " + rangeText(r));
+    }
+    if (r[0] > r[1]) {
+      throw ConfigError(where + key + " must be [min, max] with min <= max, got " + rangeText(r));
+    }
+    // Positions are sums of such values: bounded, they stay finite (so does the width).
+    if (!inBounds(r[0]) || !inBounds(r[1])) {
+      throw ConfigError(where + key + " must lie " + bound.str() + ", got " + rangeText(r));
+    }
+  }
+  if (params_.rotationAxis < 0 || params_.rotationAxis > 2) {
+    throw ConfigError(where + "rotation_axis must be x, y or z");
+  }
+  if (!std::isfinite(params_.rotation.low) || !std::isfinite(params_.rotation.high)) {
+    throw ConfigError(where + "rotation must be finite");
+  }
+  // U(low, high) is low + (high - low) u: the width must be finite too.
+  if (!std::isfinite(params_.rotation.high - params_.rotation.low)) {
+    std::ostringstream out;
+    out << where << "rotation [" << params_.rotation.low << ", " << params_.rotation.high
+        << "] is too wide: its width overflows a double";
+    throw ConfigError(out.str());
+  }
+  if (!params_.referencePos.allFinite()) {
+    throw ConfigError(where + "reference_pos must be finite");
+  }
+  if ((params_.referencePos.array().abs() > limits::kCoordinate).any()) {
+    std::ostringstream out;
+    out << where << "reference_pos must lie " << bound.str() << ", got ["
+        << params_.referencePos.x() << ", " << params_.referencePos.y() << ", "
+        << params_.referencePos.z() << "]";
+    throw ConfigError(out.str());
+  }
+  if (!std::isfinite(params_.zOffset)) {
+    throw ConfigError(where + "z_offset must be finite");
+  }
+  if (!inBounds(params_.zOffset)) {
+    std::ostringstream out;
+    out << where << "z_offset must lie " << bound.str() << ", got " << params_.zOffset;
+    throw ConfigError(out.str());
+  }
+  if (params_.maxAttempts == 0) {
+    throw ConfigError(where + "max_attempts must be at least 1");
+  }
+  axis_ = Eigen::Vector3d::Unit(params_.rotationAxis);
+  addObjects(objects);
+}
+
+Eigen::Vector2d UniformRandomSampler::effectiveRange(const ObjectModel& object, int axis) const {
+  Eigen::Vector2d r = axis == 0 ? params_.xRange : params_.yRange;
+  if (params_.ensureObjectBoundaryInRange) {
+    r[0] += object.horizontalRadius;
+    r[1] -= object.horizontalRadius;
+  }
+  return r;
+}
+
+void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
+  std::unordered_set<std::string_view> names;  // a set: thousands of objects are near-linear
+  for (const Entry& e : entries_) {
+    names.insert(e.object->name);
+  }
+  for (const ObjectPtr& object : objects) {
+    if (!names.insert(object->name).second) {
+      throw ConfigError("sampler " + quoteText(name()) + ": object " + quoteText(object->name) +
+                        " is already in this sampler");
+    }
+    Entry entry{object, effectiveRange(*object, 0), effectiveRange(*object, 1)};
+    for (int axis = 0; axis < 2; ++axis) {
+      const Eigen::Vector2d& r = axis == 0 ? entry.x : entry.y;
+      if (r[0] > r[1]) {
+        const char* key = axis == 0 ? "x_range" : "y_range";
+        std::ostringstream out;
+        out << "sampler " << quoteText(name()) << ": " << key << " "
+            << rangeText(axis == 0 ? params_.xRange : params_.yRange)
+            << " leaves no room for object " << quoteText(object->name) << " (horizontal radius "
+            << object->horizontalRadius
+            << " m) with ensure_object_boundary_in_range on: the range must be at least "
+            << 2.0 * object->horizontalRadius << " m wide";
+        throw ConfigError(out.str());
+      }
+    }
+    entries_.push_back(entry);
+  }
+}
+
+std::vector<ObjectPtr> UniformRandomSampler::objects() const {
+  std::vector<ObjectPtr> out;
+  out.reserve(entries_.size());
+  for (const Entry& e : entries_) {
+    out.push_back(e.object);
+  }
+  return out;
+}
+
+void UniformRandomSampler::reset() { entries_.clear(); }
+
+Eigen::Quaterniond UniformRandomSampler::sampleOrientation(Engine& engine,
+                                                           const ObjectModel& object) const {
+  double angle = params_.rotation.low;
+  if (params_.rotation.kind == RotationSpec::Kind::Full) {
+    angle = uniform(engine, 0.0, 2.0 * M_PI);
+  } else if (params_.rotation.kind == RotationSpec::Kind::Range) {
+    angle = uniform(engine, params_.rotation.low, params_.rotation.high);  // draws when low == high
+  }
+  // A world-axis rotation applied after the initial orientation; Eigen's AngleAxis conversion,
+  // with our sinCos.
+  double s = 0.0;
+  double c = 0.0;
+  sinCos(0.5 * angle, s, c);
+  return Eigen::Quaterniond(c, s * axis_.x(), s * axis_.y(), s * axis_.z()) *
+         object.initOrientation;
+}
+
+bool UniformRandomSampler::sample(SampleContext& context, const Reference& reference,
+                                  bool onTop) const {
+  Eigen::Vector3d base = params_.referencePos;
+  if (reference.kind == Reference::Kind::Point) {
+    base = reference.point;
+  } else if (reference.kind == Reference::Kind::Name) {
+    const PlacedEntry* ref = context.find(reference.name);
+    if (ref == nullptr) {
+      Failure failure;
+      failure.sampler = name();
+      failure.message = "sampler " + quoteText(name()) + ": reference " +
+                        quoteText(reference.name) +
+                        " is neither a fixture nor an object placed before this sampler";
+      context.fail(std::move(failure));
+      return false;
+    }
+    base = ref->position;
+    if (onTop) {
+      base.z() += ref->object->topOffset.z();
+    }
+  }
+  for (const Entry& entry : entries_) {
+    if (!placeOne(context, entry, base, onTop)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
+                                    const Eigen::Vector3d& base, bool onTop) const {
+  const ObjectModel& object = *entry.object;
+  // robosuite's draws: per attempt x then y, one rotation draw after the accepted attempt
+  // (the fcl modes draw it per attempt, before their test, which needs it).
+  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
+  const std::uint32_t limit =
+      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  const bool check = params_.ensureValidPlacement;
+  const bool orientFirst = check && context.needsOrientation();
+  std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
+
+  Candidate candidate;
+  candidate.object = &object;
+  candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+  for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
+    if ((attempt & 1023u) == 0 && context.expired()) {
+      Failure failure;
+      failure.object = object.name;
+      failure.sampler = name();
+      failure.attempts = attempt - 1;
+      failure.message = "stopped placing object " + quoteText(object.name) + " with sampler " +
+                        quoteText(name()) + " after " + std::to_string(attempt - 1) +
+                        " attempts: the request ran out of time";
+      context.fail(std::move(failure));
+      return false;
+    }
+    candidate.position.x() = uniform(engine, entry.x[0], entry.x[1]) + base.x();
+    candidate.position.y() = uniform(engine, entry.y[0], entry.y[1]) + base.y();
+    if (orientFirst) {
+      candidate.orientation = sampleOrientation(engine, object);
+    }
+    if (check) {
+      const std::ptrdiff_t blocker = context.firstCollision(candidate);
+      if (blocker != CollisionChecker::kNone) {
+        ++(*counts)[static_cast<std::size_t>(blocker)];
+        continue;
+      }
+    }
+    if (!orientFirst) {
+      candidate.orientation = sampleOrientation(engine, object);
+    }
+    context.addPlacement(name(), candidate, attempt, params_.hides);
+    return true;
+  }
+
+  Failure failure;
+  failure.object = object.name;
+  failure.sampler = name();
+  failure.attempts = limit;
+  std::ostringstream out;
+  out << "could not place object " << quoteText(object.name) << " with sampler "
+      << quoteText(name()) << " in " << limit << " attempts";
+  if (counts != nullptr && !counts->empty()) {
+    const auto most = std::max_element(counts->begin(), counts->end());
+    const std::size_t index = static_cast<std::size_t>(most - counts->begin());
+    failure.blocker = context.entries()[index].name;
+    failure.blockerCount = *most;
+    out << ": " << *most << " of them overlapped "
+        << (context.entries()[index].fixture ? "fixture" : "object") << " "
+        << quoteText(failure.blocker);
+    std::size_t others = 0;
+    for (std::size_t i = 0; i < counts->size(); ++i) {
+      others += (i != index && (*counts)[i] > 0) ? 1 : 0;
+    }
+    if (others > 0) {
+      out << " (and " << others << " other" << (others > 1 ? "s" : "") << " blocked too)";
+    }
+  }
+  failure.message = out.str();
+  context.fail(std::move(failure));
+  return false;
+}
+
+}  // namespace placement_samplers
