@@ -1,0 +1,57 @@
+#pragma once
+// Pieces of the configuration builder (config_builder.cpp), one file each: the top-level
+// settings, the items of a samplers list, a uniform sampler's parameters. Private to the core.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "placement_samplers/config/config_node.hpp"
+#include "placement_samplers/config/scene_config.hpp"
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
+
+namespace placement_samplers::detail {
+
+/// True for a key of the configuration's top level (not a named sampler's map).
+bool isTopLevelKey(const std::string& key);
+
+/// The allowed top-level keys: the fixed ones and the names of the named samplers.
+std::vector<std::string> allowedTopLevelKeys(const ConfigNode& root);
+
+/// Refuses a tree (from rosparam or YAML) of more than limits::kConfigValues values or nested
+/// more than limits::kConfigDepth levels.
+void checkTreeSize(const ConfigNode& root);
+
+/// Reads the top-level settings (frame_id, seed, collision_check, limits, tf options) into
+/// @p config; objects, fixtures and samplers are the builder's.
+void readSettings(const ConfigNode& root, SceneConfig& config);
+
+/// Adds to @p names the names of samplers in @p list (and nested lists) whose parameters live
+/// in a top-level map of their own.
+void collectNamedSamplers(const ConfigNode& root, const ConfigNode& list,
+                          std::vector<std::string>& names);
+
+/// One item of a samplers list: where its parameters are read and what names it.
+struct SamplerItem {
+  const ConfigNode* params;    ///< the inline map, or the top-level map of its name
+  const ConfigNode* nameNode;  ///< errors about the name point here
+  const ConfigNode* typeNode;  ///< `type` given in the list item of the named form, or null
+  bool named;                  ///< parameters in a top-level map of its name
+  std::string name;
+};
+
+/// Where the parameters of list item @p item are: inline, or in the top-level map of its name.
+SamplerItem resolveSamplerItem(const ConfigNode& root, const ConfigNode& item);
+
+/// Unknown keys are typos; `name` is the map's key in the named form.
+void checkSamplerKeys(const SamplerItem& s, std::vector<std::string> allowed);
+
+/// A uniform sampler's own parameters (ranges, rotation, flags); @p maxAttempts is the
+/// configuration's default.
+UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAttempts);
+
+/// A [min, max] pair with min <= max.
+Eigen::Vector2d parseRange(const ConfigNode& n);
+
+}  // namespace placement_samplers::detail
