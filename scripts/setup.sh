@@ -19,8 +19,11 @@ PS_PACKAGES=(
   liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev libassimp-dev
   librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev
   libyaml-cpp-dev catkin-lint
-  # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it.
+  # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it;
+  # the .npz writer's CRC-32 is zlib's too.
   zlib1g-dev
+  # /usr/bin/time: test/npz_memory.sh measures the peak memory of a large --output run.
+  time
   # MuJoCo reads MJCF objects; its CMake config needs OpenGL's and qhull's development files
   # without depending on them (a fresh Debian 12 failed at configure).
   libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev
