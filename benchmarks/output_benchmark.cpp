@@ -73,7 +73,8 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const ps::SceneGenerator generator(ps::buildSceneConfig(ps::parseYaml(clutterYaml(objects), "clutter")));
+  const ps::SceneGenerator generator(
+      ps::buildSceneConfig(ps::parseYaml(clutterYaml(objects), "clutter")));
   const ps::PreparedRequest request = generator.prepare(ps::SampleRequest());
   std::vector<std::string> names;
   for (const ps::ObjectPtr& object : request.sampler->objects()) {

@@ -201,8 +201,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     if (configPath.empty()) {
       throw UsageError("--config FILE is required");
     }
-    if (!outputPath.empty() && (outputPath.size() < 5 ||
-                                outputPath.compare(outputPath.size() - 4, 4, ".npz") != 0)) {
+    if (!outputPath.empty() &&
+        (outputPath.size() < 5 || outputPath.compare(outputPath.size() - 4, 4, ".npz") != 0)) {
       throw UsageError("--output: expected a file name ending in .npz, got " +
                        quoteText(outputPath));
     }
@@ -281,9 +281,9 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       }
       npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed);
     }
-    return writeScenes(generator, prepared, seed, firstScene, scenes, threads, out, npz.get())
-               ? 0
-               : 1;
+    const bool allPlaced =
+        writeScenes(generator, prepared, seed, firstScene, scenes, threads, out, npz.get());
+    return allPlaced ? 0 : 1;
   } catch (const OutputError& e) {
     err << "sample_scenes: " << e.what() << "\n";
   } catch (const ConfigError& e) {

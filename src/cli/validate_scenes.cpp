@@ -65,7 +65,8 @@ std::vector<GivenPose> readScene(const std::string& line, std::uint64_t fallback
     }
     GivenPose pose;
     pose.name = p["name"].as<std::string>();
-    pose.position = readVector<3>(p["position"], where + " (" + quoteText(pose.name) + ") position");
+    pose.position =
+        readVector<3>(p["position"], where + " (" + quoteText(pose.name) + ") position");
     const Eigen::Vector4d q =
         readVector<4>(p["orientation"], where + " (" + quoteText(pose.name) + ") orientation");
     pose.orientation.coeffs() = q;  // x, y, z, w, as printed
@@ -129,8 +130,8 @@ int validateSceneLines(const SceneGenerator& generator, const PreparedRequest& r
       poses = readScene(line, scenes, scene);
     } catch (const LineError& e) {
       out.flush();
-      err << "sample_scenes: --validate " << escapeText(source) << ": line " << lineNumber
-          << ": " << escapeText(e.what()) << "\n";
+      err << "sample_scenes: --validate " << escapeText(source) << ": line " << lineNumber << ": "
+          << escapeText(e.what()) << "\n";
       return 2;
     }
     ++scenes;

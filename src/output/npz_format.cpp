@@ -109,10 +109,10 @@ std::string centralDirectory(const std::vector<ZipMember>& members, std::uint64_
     put32(out, zip64 ? kMax32 : static_cast<std::uint32_t>(m.size));
     put16(out, static_cast<std::uint16_t>(m.name.size()));
     put16(out, zip64 ? 28 : 0);
-    put16(out, 0);                 // comment
-    put16(out, 0);                 // disk
-    put16(out, 0);                 // internal attributes
-    put32(out, 0100644u << 16);    // a regular file, rw-r--r--
+    put16(out, 0);               // comment
+    put16(out, 0);               // disk
+    put16(out, 0);               // internal attributes
+    put32(out, 0100644u << 16);  // a regular file, rw-r--r--
     put32(out, zip64 ? kMax32 : static_cast<std::uint32_t>(m.headerOffset));
     out += m.name;
     if (zip64) {

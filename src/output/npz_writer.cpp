@@ -75,8 +75,8 @@ struct NpzWriter::Impl {
   /// Appends @p size bytes to member @p m at row offset @p offset, updating its CRC.
   void append(Member m, const void* data, std::size_t size, std::uint64_t offset) {
     writeAt(data, size, arrayOffset[m] + offset);
-    members[m].crc = static_cast<std::uint32_t>(
-        crc32_z(members[m].crc, static_cast<const Bytef*>(data), size));
+    members[m].crc =
+        static_cast<std::uint32_t>(crc32_z(members[m].crc, static_cast<const Bytef*>(data), size));
   }
 
   std::size_t column(const ObjectPlacement& p, std::size_t i) const {
@@ -149,7 +149,8 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   }
   d.zip64 = options.forceZip64 || npz::needsZip64(d.members);
   d.directoryOffset = npz::layOut(d.members, d.zip64);
-  d.fileSize = d.directoryOffset + npz::centralDirectory(d.members, d.directoryOffset, d.zip64).size();
+  d.fileSize =
+      d.directoryOffset + npz::centralDirectory(d.members, d.directoryOffset, d.zip64).size();
 
   d.fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (d.fd < 0) {

@@ -122,13 +122,12 @@ class Validator {
     }
     const GivenPose& pose = *given->second;
     const double norm = pose.orientation.coeffs().norm();
-    const bool bounded = pose.position.allFinite() &&
-                         (pose.position.array().abs() <= limits::kCoordinate).all();
+    const bool bounded =
+        pose.position.allFinite() && (pose.position.array().abs() <= limits::kCoordinate).all();
     if (!bounded || !std::isfinite(norm) || norm < 1e-6) {
       add(verdict, Violation::Kind::BadPose, "", "", 0.0,
           "object " + quoteText(object.name) + ": " +
-              (!bounded ? "the position must be finite and within +-" +
-                              metres(limits::kCoordinate)
+              (!bounded ? "the position must be finite and within +-" + metres(limits::kCoordinate)
                         : std::string("the orientation must be a finite non-zero quaternion")));
       return;
     }
@@ -162,7 +161,8 @@ class Validator {
                 metres(off));
       }
     }
-    if (params.ensureValidPlacement && context_.firstCollision(candidate) != CollisionChecker::kNone) {
+    if (params.ensureValidPlacement &&
+        context_.firstCollision(candidate) != CollisionChecker::kNone) {
       overlaps(verdict, candidate, object.name);
     }
     context_.addPlacement(s, candidate, 1, params.hides);

@@ -68,7 +68,8 @@ TEST_F(ValidatePlacementsTest, SampledScenesAreValidUnderEachCheck) {
 
 TEST_F(ValidatePlacementsTest, ReasonsForMovedMissingAndUnknownObjects) {
   ValidatePlacements::Request request;
-  request.placements = sample(7, ValidatePlacements::Request::CHECK_DEFAULT).scenes.at(0).placements;
+  request.placements =
+      sample(7, ValidatePlacements::Request::CHECK_DEFAULT).scenes.at(0).placements;
   for (auto& p : request.placements) {
     if (p.name == "ball") {
       p.pose.position.z += 0.05;

@@ -162,8 +162,8 @@ void checkSample(bool zip64) {
             "{'descr': '<U5', 'fortran_order': False, 'shape': (2,), }");
   ASSERT_EQ(names.size(), 40u);
   EXPECT_EQ(le(names, 0, 4), static_cast<std::uint64_t>('c'));
-  EXPECT_EQ(le(names, 16, 4), 0u);            // "cube" padded
-  EXPECT_EQ(le(names, 24, 4), 0xFCu);         // u-umlaut as one code point
+  EXPECT_EQ(le(names, 16, 4), 0u);     // "cube" padded
+  EXPECT_EQ(le(names, 24, 4), 0xFCu);  // u-umlaut as one code point
   auto [positionDict, position] = splitNpy(entries.at("position.npy").data);
   EXPECT_EQ(positionDict.substr(0, positionDict.find('}') + 1),
             "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2, 3), }");

@@ -53,8 +53,8 @@ struct TempFile {
 
 TEST(SampleScenesNpz, WritesTheFileAndPrintsNothing) {
   const TempFile npz("scenes.npz");
-  const CliRun r = run({"--config", kDefaultConfig, "--seed", "7", "--scenes", "20", "--output",
-                        npz.path});
+  const CliRun r =
+      run({"--config", kDefaultConfig, "--seed", "7", "--scenes", "20", "--output", npz.path});
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out, "");
   std::ifstream in(npz.path, std::ios::binary);
@@ -83,11 +83,11 @@ TEST(SampleScenesValidate, SampledScenesAreValid) {
   ASSERT_EQ(sampled.status, 0) << sampled.err;
   const TempFile scenes("scenes.jsonl", sampled.out);
   for (const char* mode : {"radius", "fcl", "radius_and_fcl"}) {
-    const CliRun sampledMode = run({"--config", kDefaultConfig, "--seed", "7", "--scenes", "10",
-                                    "--collision-check", mode});
+    const CliRun sampledMode = run(
+        {"--config", kDefaultConfig, "--seed", "7", "--scenes", "10", "--collision-check", mode});
     const TempFile modeScenes(std::string("scenes_") + mode + ".jsonl", sampledMode.out);
-    const CliRun r = run({"--config", kDefaultConfig, "--collision-check", mode, "--validate",
-                          modeScenes.path});
+    const CliRun r =
+        run({"--config", kDefaultConfig, "--collision-check", mode, "--validate", modeScenes.path});
     EXPECT_EQ(r.status, 0) << mode << ": " << r.out << r.err;
     EXPECT_EQ(r.lines.size(), 10u) << mode;
   }
@@ -127,10 +127,10 @@ TEST(SampleScenesValidate, InvalidSceneAndReasons) {
             std::string::npos)
       << r.lines[1];
   // A looser tolerance does not hide a metre.
-  EXPECT_EQ(run({"--config", kDefaultConfig, "--validate", scenes.path, "--height-tolerance",
-                 "0.5"})
-                .status,
-            1);
+  EXPECT_EQ(
+      run({"--config", kDefaultConfig, "--validate", scenes.path, "--height-tolerance", "0.5"})
+          .status,
+      1);
 }
 
 TEST(SampleScenesValidate, BadInput) {
@@ -139,8 +139,8 @@ TEST(SampleScenesValidate, BadInput) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err, "sample_scenes: --validate " + notObject.path +
                        ": line 1: expected a JSON object (one scene of sample_scenes)\n");
-  const TempFile badPosition(
-      "position.jsonl", "{\"placements\": [{\"name\": \"cube\", \"position\": [1, 2]}]}\n");
+  const TempFile badPosition("position.jsonl",
+                             "{\"placements\": [{\"name\": \"cube\", \"position\": [1, 2]}]}\n");
   r = run({"--config", kDefaultConfig, "--validate", badPosition.path});
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err, "sample_scenes: --validate " + badPosition.path +

@@ -248,8 +248,8 @@ TEST(SceneValidatorRoundTrip, EverySampledSceneIsValid) {
       std::size_t valid = 0;
       for (const SceneResult& scene : generator.sampleScenes(prepared, 42, 60, 2)) {
         const SceneVerdict v = validateScene(generator, prepared, posesOf(scene));
-        const std::string label = file + " " + collisionModeName(mode) + " scene " +
-                                  std::to_string(scene.index);
+        const std::string label =
+            file + " " + collisionModeName(mode) + " scene " + std::to_string(scene.index);
         EXPECT_EQ(v.valid, scene.success) << label;
         valid += v.valid ? 1 : 0;
         for (const ObjectVerdict& o : v.objects) {

@@ -41,8 +41,8 @@ class NpzWriter {
   /// @param numScenes K, the number of scenes write() will be given in all
   /// @param seed the request seed, stored as `seed`
   /// @throw OutputError when the file cannot be created or written
-  NpzWriter(const std::string& path, const std::vector<std::string>& names,
-            std::uint64_t numScenes, std::uint64_t seed, const NpzOptions& options = {});
+  NpzWriter(const std::string& path, const std::vector<std::string>& names, std::uint64_t numScenes,
+            std::uint64_t seed, const NpzOptions& options = {});
   /// Closes the file; removes it when finish() did not complete (a partial file is no .npz).
   ~NpzWriter();
   NpzWriter(const NpzWriter&) = delete;
