@@ -163,13 +163,14 @@ class Validator {
     }
     if (params.ensureValidPlacement &&
         context_.firstCollision(candidate) != CollisionChecker::kNone) {
-      overlaps(verdict, candidate, object.name);
+      overlaps(verdict, candidate, object.name, s);
     }
     context_.addPlacement(s, candidate, 1, params.hides);
   }
 
   /// Every fixture and earlier object that @p candidate overlaps, one test each.
-  void overlaps(ObjectVerdict& verdict, const Candidate& candidate, const std::string& name) {
+  void overlaps(ObjectVerdict& verdict, const Candidate& candidate, const std::string& name,
+                const std::string& sampler) {
     const char* mode = collisionModeName(request_.collisionCheck);
     std::vector<PlacedEntry> one(1);
     for (const PlacedEntry& entry : context_.entries()) {
@@ -179,7 +180,7 @@ class Validator {
       if (pairChecker_->firstCollision(one, candidate) == CollisionChecker::kNone) {
         continue;
       }
-      add(verdict, Violation::Kind::Overlap, "", std::string(entry.name), 0.0,
+      add(verdict, Violation::Kind::Overlap, sampler, std::string(entry.name), 0.0,
           "object " + quoteText(name) + " overlaps " + (entry.fixture ? "fixture " : "object ") +
               quoteText(entry.name) + " under the " + mode + " check");
       verdict.reasons.back().check = mode;

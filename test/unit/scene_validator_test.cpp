@@ -148,6 +148,7 @@ TEST_F(SceneValidatorTest, OverlapsUnderEachCheck) {
                      "overlap: object 'ball' overlaps object 'cube' under the radius check"}));
   EXPECT_EQ(v.objects[3].reasons[1].other, "cube");
   EXPECT_EQ(v.objects[3].reasons[1].check, "radius");
+  EXPECT_EQ(v.objects[3].reasons[1].sampler, "TableSampler");
   // The cup sits on the plate, inside its radius, but its sampler does not check.
   EXPECT_TRUE(reasons(v, "cup").empty());
   SampleRequest fcl;

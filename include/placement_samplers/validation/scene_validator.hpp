@@ -28,7 +28,8 @@ struct Violation {
     BadPose,           ///< a coordinate is not finite or too large, or the quaternion is zero
   };
   Kind kind = Kind::Unknown;
-  std::string sampler;    ///< the sampler concerned ("" for Unknown, Duplicate, BadPose, Overlap)
+  /// The object's sampler ("" for Unknown, Duplicate, BadPose).
+  std::string sampler;
   std::string other;      ///< Overlap: the object or fixture; ReferenceMissing: the reference
   std::string check;      ///< Overlap: "radius", "fcl" or "radius_and_fcl"
   double distance = 0.0;  ///< OutsideRegion, Height: by how much [m]
