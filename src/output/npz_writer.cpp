@@ -1,6 +1,7 @@
 #include "placement_samplers/output/npz_writer.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -31,6 +32,7 @@ struct NpzWriter::Impl {
   std::string path;
   std::string shownPath;
   int fd = -1;
+  bool regular = false;  // a regular file: removed when not finished (never a device or FIFO)
   bool finished = false;
   bool zip64 = false;
   std::uint64_t numScenes = 0;
@@ -47,6 +49,16 @@ struct NpzWriter::Impl {
   std::vector<std::uint32_t> attempts;
   std::vector<std::uint8_t> success;
   std::vector<std::uint64_t> scene;
+
+  // Also when the constructor throws: the file is closed and a partial one removed.
+  ~Impl() {
+    if (fd >= 0) {
+      ::close(fd);
+    }
+    if (!finished && regular) {
+      ::unlink(path.c_str());
+    }
+  }
 
   [[noreturn]] void fail(const std::string& what, int error) const {
     throw OutputError(shownPath + ": " + what + ": " + std::strerror(error));
@@ -156,6 +168,8 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   if (d.fd < 0) {
     d.fail("cannot create", errno);
   }
+  struct stat status {};
+  d.regular = ::fstat(d.fd, &status) == 0 && S_ISREG(status.st_mode);
   // Reserve the whole file now: a full disk shows at once, not after hours of sampling.
   if (::posix_fallocate(d.fd, 0, static_cast<off_t>(d.fileSize)) == ENOSPC) {
     throw OutputError(d.shownPath + ": not enough disk space for " + std::to_string(d.fileSize) +
@@ -173,14 +187,7 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   d.append(kSeed, &seed, sizeof(seed), 0);
 }
 
-NpzWriter::~NpzWriter() {
-  if (impl_->fd >= 0) {
-    ::close(impl_->fd);
-  }
-  if (!impl_->finished) {
-    ::unlink(impl_->path.c_str());
-  }
-}
+NpzWriter::~NpzWriter() = default;
 
 void NpzWriter::write(const std::vector<SceneResult>& scenes) {
   Impl& d = *impl_;

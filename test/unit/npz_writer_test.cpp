@@ -247,6 +247,7 @@ TEST(NpzWriter, Errors) {
   } catch (const OutputError& e) {
     EXPECT_STREQ(e.what(), "/dev/full: cannot write: No space left on device");
   }
+  EXPECT_EQ(::access("/dev/full", F_OK), 0) << "a device is never removed";
   const std::string path = tempPath("short.npz");
   {
     NpzWriter writer(path, {"cube"}, 2, 0);

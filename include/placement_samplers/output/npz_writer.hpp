@@ -43,7 +43,8 @@ class NpzWriter {
   /// @throw OutputError when the file cannot be created or written
   NpzWriter(const std::string& path, const std::vector<std::string>& names, std::uint64_t numScenes,
             std::uint64_t seed, const NpzOptions& options = {});
-  /// Closes the file; removes it when finish() did not complete (a partial file is no .npz).
+  /// Closes the file; removes it when finish() did not complete (a partial file is no .npz),
+  /// unless it is no regular file (a device such as /dev/full, a FIFO).
   ~NpzWriter();
   NpzWriter(const NpzWriter&) = delete;
   NpzWriter& operator=(const NpzWriter&) = delete;
