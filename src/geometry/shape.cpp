@@ -163,27 +163,23 @@ Shape Shape::box(const Eigen::Vector3d& size) {
   return s;
 }
 
-Shape Shape::cylinder(double radius, double length) {
+/// A shape given by a radius and a length (cylinder, sphere, capsule).
+static Shape roundShape(ShapeType type, double radius, double length) {
   Shape s;
-  s.type = ShapeType::Cylinder;
+  s.type = type;
   s.radius = radius;
   s.length = length;
   return s;
 }
 
-Shape Shape::sphere(double radius) {
-  Shape s;
-  s.type = ShapeType::Sphere;
-  s.radius = radius;
-  return s;
+Shape Shape::cylinder(double radius, double length) {
+  return roundShape(ShapeType::Cylinder, radius, length);
 }
+
+Shape Shape::sphere(double radius) { return roundShape(ShapeType::Sphere, radius, 0.0); }
 
 Shape Shape::capsule(double radius, double length) {
-  Shape s;
-  s.type = ShapeType::Capsule;
-  s.radius = radius;
-  s.length = length;
-  return s;
+  return roundShape(ShapeType::Capsule, radius, length);
 }
 
 Bounds shapeBounds(const Shape& shape, const Eigen::Quaterniond& orientation) {
