@@ -1,5 +1,6 @@
 #include "placement_samplers/ros/placement_server.hpp"
 
+#include <ros/package.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <chrono>
@@ -32,6 +33,10 @@ std::shared_ptr<const SceneGenerator> loadGenerator(const ros::NodeHandle& priva
       }
       return text;
     };
+  };
+  // package:// URIs through ROS's own lookup (rospack) rather than the core's stand-in.
+  options.packageResolver = [](const std::string& package) {
+    return ros::package::getPath(package);
   };
   options.urdfParam = textParam("URDF");
   options.mjcfParam = textParam("MJCF");

@@ -14,7 +14,6 @@
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
 #include "placement_samplers/collision/make_collision_checker.hpp"
-#include "placement_samplers/config/object_config.hpp"
 #include "placement_samplers/text.hpp"
 #include "placement_samplers/geometry/unit_quaternion.hpp"
 #include "sampling/parallel.hpp"
@@ -143,11 +142,6 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
     throw RequestError("the request has " + std::to_string(request.fixtures.size()) +
                        " fixtures, more than max_fixtures_per_request (" +
                        std::to_string(config.maxFixturesPerRequest) + ")");
-  }
-  try {
-    checkCollisionMode(prepared.collisionCheck, config.collisionMargin);
-  } catch (const ConfigError& e) {
-    throw RequestError(e.what());
   }
   prepared.fixtures = config.fixtures;
   prepared.fixtures.reserve(config.fixtures.size() + request.fixtures.size());

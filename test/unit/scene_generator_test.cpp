@@ -163,7 +163,7 @@ TEST(SceneGenerator, FixtureErrors) {
   ball.shape = Shape::sphere(0.0);
   request.fixtures = {ball};
   EXPECT_EQ(requestError(generator, request),
-            "fixture 'a': radius must be finite and positive, got 0");
+            "fixture 'a': sphere radius must be finite and positive, got 0");
 
   RequestFixture bare;
   bare.name = "a";

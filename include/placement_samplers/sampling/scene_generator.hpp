@@ -10,7 +10,7 @@
 
 #include "placement_samplers/sampling/placement.hpp"
 #include "placement_samplers/sampling/placement_sampler.hpp"
-#include "placement_samplers/config/scene_config.hpp"
+#include "placement_samplers/sampling/scene_config.hpp"
 
 namespace placement_samplers {
 
