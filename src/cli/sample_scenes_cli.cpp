@@ -15,6 +15,7 @@
 
 #include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/sampling/failure_summary.hpp"
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/output/npz_writer.hpp"
@@ -81,15 +82,15 @@ constexpr std::uint64_t kBlock = 8192;
 constexpr std::uint64_t kBlockPlacements = 1 << 20;
 
 /// Samples and prints scenes firstScene .. firstScene + count - 1 in blocks; formatting is spread
-/// over the threads too, since printing a scene costs more than sampling it. @return true when all
-/// succeeded.
-bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
-                 std::uint64_t seed, std::uint64_t firstScene, std::uint64_t count,
-                 unsigned threads, std::ostream& out, NpzWriter* npz) {
+/// over the threads too, since printing a scene costs more than sampling it; with @p npz, the
+/// scenes go there instead. @return what failed
+FailureSummary writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
+                           std::uint64_t seed, std::uint64_t firstScene, std::uint64_t count,
+                           unsigned threads, std::ostream& out, NpzWriter* npz) {
   const unsigned workers =
       threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::string> texts(workers);
-  bool allPlaced = true;
+  FailureSummary failures;
   const std::uint64_t perScene = std::max<std::uint64_t>(generator.placementsPerScene(prepared), 1);
   const std::uint64_t block = std::clamp<std::uint64_t>(kBlockPlacements / perScene, 1, kBlock);
   for (std::uint64_t first = 0; first < count; first += block) {
@@ -97,7 +98,7 @@ bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepare
     const std::vector<SceneResult> results =
         generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads);
     for (const SceneResult& scene : results) {
-      allPlaced = allPlaced && scene.success;
+      failures.add(scene);
     }
     if (npz != nullptr) {
       npz->write(results);
@@ -130,7 +131,7 @@ bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepare
     npz->finish();
   }
   out.flush();
-  return allPlaced;
+  return failures;
 }
 
 }  // namespace
@@ -254,11 +255,6 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     if (seed == 0) {
       seed = randomSeed();  // a fresh seed, printed with every scene
     }
-    if (scenes > 0 && scenes - 1 > std::numeric_limits<std::uint64_t>::max() - firstScene) {
-      err << "sample_scenes: --first-scene " << firstScene << " with --scenes " << scenes
-          << ": scene indices must stay below 2^64\n";
-      return 2;
-    }
     if (!validatePath.empty()) {
       ValidationOptions validation;
       validation.heightTolerance = heightTolerance;
@@ -273,6 +269,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       }
       return validateSceneLines(generator, prepared, validation, in, validatePath, out, err);
     }
+    checkSceneRange(firstScene, scenes);  // before the first block is written
     std::unique_ptr<NpzWriter> npz;
     if (!outputPath.empty()) {
       std::vector<std::string> names;
@@ -281,9 +278,13 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       }
       npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed);
     }
-    const bool allPlaced =
+    const FailureSummary failures =
         writeScenes(generator, prepared, seed, firstScene, scenes, threads, out, npz.get());
-    return allPlaced ? 0 : 1;
+    if (failures.failed() != 0) {
+      err << "sample_scenes: " << failures.message(scenes) << "\n";
+      return 1;
+    }
+    return 0;
   } catch (const OutputError& e) {
     err << "sample_scenes: " << e.what() << "\n";
   } catch (const ConfigError& e) {
