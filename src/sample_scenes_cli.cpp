@@ -68,10 +68,11 @@ bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepare
   bool allPlaced = true;
   const std::uint64_t perScene = std::max<std::uint64_t>(generator.placementsPerScene(prepared), 1);
   const std::uint64_t block = std::clamp<std::uint64_t>(kBlockPlacements / perScene, 1, kBlock);
+  // One vector for every block: its scenes' buffers are reused, no allocation per scene.
+  std::vector<SceneResult> results;
   for (std::uint64_t first = 0; first < count; first += block) {
     const std::uint64_t n = std::min(block, count - first);
-    const std::vector<SceneResult> results =
-        generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads);
+    generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads, results);
     const std::size_t slices = static_cast<std::size_t>(std::min<std::uint64_t>(workers, n));
     auto format = [&](std::size_t slice) {
       // A string of this thread's own (texts' buffers are kept): neighbouring std::string

@@ -35,38 +35,43 @@ class SceneGenerator::Worker {
   }
   bool expired() const { return context_.expired(); }
 
-  /// Scene @p index of request seed @p seed: numpy's default_rng([seed, index]).
-  SceneResult run(std::uint64_t seed, std::uint64_t index) {
+  /// Scene @p index of request seed @p seed (numpy's default_rng([seed, index])) into
+  /// @p result, whose buffers are reused.
+  void run(std::uint64_t seed, std::uint64_t index, SceneResult& result) {
     engine_ = sceneEngine(seed, index);
     context_.setScene(seed, index);
-    return sample(seed, index);
+    sample(result);
+    result.seed = seed;
+    result.index = index;
   }
 
  private:
-  SceneResult sample(std::uint64_t seed, std::uint64_t index) {
+  void sample(SceneResult& result) {
     context_.clear();
-    SceneResult result;
-    result.seed = seed;
-    result.index = index;
+    result.success = false;
+    result.message.clear();
     const std::vector<FixtureSpec>& fixtures = request_.fixtures;
     for (std::size_t i = 0; i < fixtures.size(); ++i) {
       // Adding thousands of fixtures to FCL's broadphase takes long too: the clock covers it.
       if ((i & 63u) == 63u && expired()) {
         result.message = "not sampled: the request ran out of time while adding its " +
                          std::to_string(fixtures.size()) + " fixtures";
-        return result;
+        result.placements.clear();
+        return;
       }
       const FixtureSpec& f = fixtures[i];
       context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
     }
-    // Each result takes the placements away: one allocation of the right size, not a growth.
+    // The placements are built in the buffer the previous swap gave the context: a result's
+    // from the caller's previous block, or a fresh one (one allocation of the right size).
     context_.placements().reserve(objects_);
     result.success = request_.sampler->sample(context_, request_.reference, request_.onTop);
     if (!result.success) {
       result.message = context_.failure() ? context_.failure()->message : "sampling failed";
     }
-    result.placements = std::move(context_.placements());
-    return result;
+    // The result takes the placements and gives the context its old buffer: no copy, and no
+    // allocation once the caller's results have been filled before.
+    result.placements.swap(context_.placements());
   }
 
   const PreparedRequest& request_;
@@ -285,7 +290,9 @@ SceneResult SceneGenerator::sampleScene(const PreparedRequest& request, std::uin
                                         std::uint64_t index) const {
   Worker worker(request, config_->collisionMargin);
   worker.setDeadline(request.deadline);
-  return worker.run(seed, index);
+  SceneResult result;
+  worker.run(seed, index, result);
+  return result;
 }
 
 std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& request,
@@ -299,11 +306,19 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
                                                           std::uint64_t seed, std::uint64_t first,
                                                           std::uint64_t count,
                                                           unsigned threads) const {
+  std::vector<SceneResult> results;
+  sampleSceneRange(request, seed, first, count, threads, results);
+  return results;
+}
+
+void SceneGenerator::sampleSceneRange(const PreparedRequest& request, std::uint64_t seed,
+                                      std::uint64_t first, std::uint64_t count, unsigned threads,
+                                      std::vector<SceneResult>& results) const {
   if (count > 0 && count - 1 > std::numeric_limits<std::uint64_t>::max() - first) {
     throw RequestError("first scene " + std::to_string(first) + " + " + std::to_string(count) +
                        " scenes: scene indices must stay below 2^64");
   }
-  std::vector<SceneResult> results(count);
+  results.resize(count);
   if (threads == 0) {
     threads = std::max(1u, std::thread::hardware_concurrency());
   }
@@ -320,19 +335,21 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
          begin = next.fetch_add(kChunk)) {
       const std::uint64_t end = std::min(count, begin + kChunk);
       for (std::uint64_t i = begin; i < end; ++i) {
+        SceneResult& result = results[i];
         if (worker.expired()) {
-          results[i].seed = seed;
-          results[i].index = first + i;
-          results[i].message = "not sampled: the request ran out of time";
+          result.seed = seed;
+          result.index = first + i;
+          result.success = false;
+          result.message = "not sampled: the request ran out of time";
+          result.placements.clear();
           continue;
         }
-        results[i] = worker.run(seed, first + i);
+        worker.run(seed, first + i, result);
       }
     }
   };
   // An exception in any worker (out of memory) stops the others and reaches the caller.
   detail::runOnThreads(threads, work, [&] { next = count; });
-  return results;
 }
 
 }  // namespace placement_samplers
