@@ -26,8 +26,8 @@ void SampleContext::addPlacement(std::string_view sampler, const Candidate& cand
   // Built whole rather than default-constructed and assigned: the default construction zeroed
   // both structs first, a tenth of placing an object.
   const ObjectModel* object = candidate.object;
-  placements_.push_back(ObjectPlacement{object->name, sampler, candidate.position,
-                                        candidate.orientation, attempts, object, hidden});
+  placements_.push_back(ObjectPlacement{object->name, sampler, candidate.orientation,
+                                        candidate.position, object, attempts, hidden});
   entries_.push_back(
       PlacedEntry{object->name, object, candidate.position, candidate.orientation, false});
   checker_.added(entries_, entries_.size() - 1);
