@@ -1,6 +1,7 @@
 #include "placement_samplers/scene_generator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -21,9 +22,12 @@
 
 namespace placement_samplers {
 
-/// Per-thread state, reused from scene to scene: engine, checker and buffers.
+/// Per-thread state, reused from scene to scene: engines, checker and buffers.
 class SceneGenerator::Worker {
  public:
+  /// Scenes per chunk: a thread takes this many at a time.
+  static constexpr std::size_t kChunk = 16;
+
   Worker(const PreparedRequest& request, double margin)
       : request_(request),
         checker_(makeCollisionChecker(request.collisionCheck, margin)),
@@ -43,6 +47,28 @@ class SceneGenerator::Worker {
     sample(result);
     result.seed = seed;
     result.index = index;
+  }
+
+  /// Scenes @p index .. @p index + @p count - 1 (count <= kChunk) into @p results, as run()
+  /// would give them; once the time limit has passed, the rest come back "not sampled".
+  void runChunk(std::uint64_t seed, std::uint64_t index, std::size_t count, SceneResult* results) {
+    // Seeded together: each seeding is a chain of dependent multiplications that the CPU
+    // overlaps with the others' (Pcg64::forScenes).
+    Engine::forScenes(seed, index, count, chunkEngines_.data());
+    for (std::size_t k = 0; k < count; ++k) {
+      SceneResult& result = results[k];
+      result.seed = seed;
+      result.index = index + k;
+      if (expired()) {
+        result.success = false;
+        result.message = "not sampled: the request ran out of time";
+        result.placements.clear();
+        continue;
+      }
+      engine_ = chunkEngines_[k];
+      context_.setScene(seed, index + k);
+      sample(result);
+    }
   }
 
  private:
@@ -75,7 +101,8 @@ class SceneGenerator::Worker {
   }
 
   const PreparedRequest& request_;
-  Engine engine_;
+  Engine engine_;  ///< the scene's stream, which context_ draws from
+  std::array<Engine, kChunk> chunkEngines_;
   std::unique_ptr<CollisionChecker> checker_;
   SampleContext context_;
   std::size_t objects_;  ///< objects the sampler places
@@ -330,22 +357,12 @@ void SceneGenerator::sampleSceneRange(const PreparedRequest& request, std::uint6
     Worker worker(request, config_->collisionMargin);
     worker.setDeadline(deadline);
     // Small chunks keep the threads balanced when some scenes take many attempts.
-    constexpr std::uint64_t kChunk = 16;
+    constexpr std::uint64_t kChunk = Worker::kChunk;
     for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
          begin = next.fetch_add(kChunk)) {
       const std::uint64_t end = std::min(count, begin + kChunk);
-      for (std::uint64_t i = begin; i < end; ++i) {
-        SceneResult& result = results[i];
-        if (worker.expired()) {
-          result.seed = seed;
-          result.index = first + i;
-          result.success = false;
-          result.message = "not sampled: the request ran out of time";
-          result.placements.clear();
-          continue;
-        }
-        worker.run(seed, first + i, result);
-      }
+      worker.runChunk(seed, first + begin, static_cast<std::size_t>(end - begin),
+                      results.data() + begin);
     }
   };
   // An exception in any worker (out of memory) stops the others and reaches the caller.
