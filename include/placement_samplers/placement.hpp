@@ -16,6 +16,19 @@ namespace placement_samplers {
 /// placing an object copies no string. The aligned quaternion comes right after them, so
 /// that no member needs padding.
 struct ObjectPlacement {
+  ObjectPlacement() = default;
+  /// Every member, so that std::vector::emplace_back builds a placement in place.
+  ObjectPlacement(std::string_view name, std::string_view sampler,
+                  const Eigen::Quaterniond& orientation, const Eigen::Vector3d& position,
+                  const ObjectModel* object, std::uint32_t attempts, bool hidden)
+      : name(name),
+        sampler(sampler),
+        orientation(orientation),
+        position(position),
+        object(object),
+        attempts(attempts),
+        hidden(hidden) {}
+
   std::string_view name;     ///< object name: `object->name`
   std::string_view sampler;  ///< name of the uniform sampler that placed it
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
