@@ -233,9 +233,10 @@ Setup makeSetup(const ps::ConfigNode& tree, std::optional<ps::CollisionMode> mod
 template <class OnBlock>
 void sampleInBlocks(const Setup& setup, std::uint64_t n, unsigned threads, OnBlock&& onBlock) {
   constexpr std::uint64_t kBlock = 8192;
+  std::vector<ps::SceneResult> results;  // reused from block to block, as sample_scenes does
   for (std::uint64_t first = 0; first < n; first += kBlock) {
-    const auto results = setup.generator->sampleSceneRange(setup.request, kSeed, first,
-                                                           std::min(kBlock, n - first), threads);
+    setup.generator->sampleSceneRange(setup.request, kSeed, first, std::min(kBlock, n - first),
+                                      threads, results);
     onBlock(results);
   }
 }

@@ -93,10 +93,11 @@ FailureSummary writeScenes(const SceneGenerator& generator, const PreparedReques
   FailureSummary failures;
   const std::uint64_t perScene = std::max<std::uint64_t>(generator.placementsPerScene(prepared), 1);
   const std::uint64_t block = std::clamp<std::uint64_t>(kBlockPlacements / perScene, 1, kBlock);
+  // One vector for every block: its scenes' buffers are reused, no allocation per scene.
+  std::vector<SceneResult> results;
   for (std::uint64_t first = 0; first < count; first += block) {
     const std::uint64_t n = std::min(block, count - first);
-    const std::vector<SceneResult> results =
-        generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads);
+    generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads, results);
     for (const SceneResult& scene : results) {
       failures.add(scene);
     }

@@ -96,9 +96,9 @@ struct NpzWriter::Impl {
     if (i < names.size() && names[i] == p.name) {
       return i;
     }
-    const auto found = columns.find(p.name);
+    const auto found = columns.find(std::string(p.name));
     if (found == columns.end()) {
-      throw std::invalid_argument("NpzWriter: scene places " + quoteText(p.name) +
+      throw std::invalid_argument("NpzWriter: scene places " + quoteText(std::string(p.name)) +
                                   ", which is not among the names given");
     }
     return found->second;

@@ -186,11 +186,12 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const SceneResult& sce
                                                           const std::string& tfPrefix,
                                                           const ros::Time& stamp) {
   std::vector<geometry_msgs::TransformStamped> out;
-  auto add = [&](const std::string& name, const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
+  auto add = [&](std::string_view name, const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
     geometry_msgs::TransformStamped t;
     t.header.stamp = stamp;
     t.header.frame_id = frameId;
-    t.child_frame_id = tfPrefix + name;
+    t.child_frame_id = tfPrefix;
+    t.child_frame_id += name;
     t.transform.translation.x = p.x();
     t.transform.translation.y = p.y();
     t.transform.translation.z = p.z();

@@ -28,7 +28,7 @@ constexpr int kLabelIdBase = 1 << 20;
 
 }  // namespace
 
-std_msgs::ColorRGBA objectColour(const std::string& name) {
+std_msgs::ColorRGBA objectColour(std::string_view name) {
   // FNV-1a of the name picks a hue: the same colour in every call and every run.
   std::uint32_t hash = 2166136261u;
   for (const char c : name) {
@@ -116,7 +116,7 @@ class MarkerBuilder {
   }
 
   /// The name above the object's top, in namespace "labels" (rviz can switch it off).
-  void label(const std::string& name, const Eigen::Vector3d& position, double top) {
+  void label(std::string_view name, const Eigen::Vector3d& position, double top) {
     Marker& m = add("labels", Marker::TEXT_VIEW_FACING,
                     Eigen::Isometry3d(Eigen::Translation3d(position + Eigen::Vector3d(0, 0, top))),
                     Eigen::Vector3d(0.0, 0.0, kLabelHeight), colour(1.0f, 1.0f, 1.0f, 0.9f));

@@ -65,6 +65,48 @@ void appendWords(std::uint64_t value, std::uint32_t* words, std::size_t& count) 
   }
 }
 
+constexpr std::size_t kPool = SeedSequence::kPoolSize;
+
+/// mix_entropy's steps for at most kPool words, which numpy pads with zeros: the same for
+/// every such entropy. Lanes side by side: pool[i][lane] holds word i of entropy `lane` and
+/// becomes its mixed pool word i. Each lane is one long chain of multiplications; several
+/// lanes keep the CPU busy while each waits (Pcg64::forScenes).
+template <std::size_t kLanes>
+void mixPoolWords(std::uint32_t (&pool)[kPool][kLanes]) {
+  for (std::size_t i = 0; i < kPool; ++i) {
+    for (std::size_t lane = 0; lane < kLanes; ++lane) {
+      pool[i][lane] = hashMixAt(pool[i][lane], i);
+    }
+  }
+  // Every word into every other, so that late words affect early ones.
+  std::size_t k = kPool;  // hashmix calls so far
+  for (std::size_t source = 0; source < kPool; ++source) {
+    for (std::size_t target = 0; target < kPool; ++target) {
+      if (source == target) {
+        continue;
+      }
+      for (std::size_t lane = 0; lane < kLanes; ++lane) {
+        pool[target][lane] = mix(pool[target][lane], hashMixAt(pool[source][lane], k));
+      }
+      ++k;
+    }
+  }
+}
+
+/// generate_state(4, uint64) of mixed pools, lanes as in mixPoolWords(): PCG64's seed.
+template <std::size_t kLanes>
+void pcgSeedWords(const std::uint32_t (&pool)[kPool][kLanes], std::uint64_t (&out)[4][kLanes]) {
+  for (std::size_t i = 0; i < 8; i += 2) {
+    for (std::size_t lane = 0; lane < kLanes; ++lane) {
+      std::uint32_t low = (pool[i % kPool][lane] ^ kHashB[i]) * kHashB[i + 1];
+      std::uint32_t high = (pool[(i + 1) % kPool][lane] ^ kHashB[i + 1]) * kHashB[i + 2];
+      low ^= low >> kXShift;
+      high ^= high >> kXShift;
+      out[i / 2][lane] = low | (std::uint64_t{high} << 32);  // little-endian pairs, as numpy
+    }
+  }
+}
+
 }  // namespace
 
 SeedSequence::SeedSequence(const std::uint64_t* entropy, std::size_t entropyCount,
@@ -98,17 +140,13 @@ SeedSequence SeedSequence::ofPair(std::uint64_t seed, std::uint64_t index) {
 }
 
 void SeedSequence::mixEntropy(const std::uint32_t* words, std::size_t count) {
-  std::size_t k = 0;  // hashmix calls so far
+  std::uint32_t pool[kPoolSize][1];
   for (std::size_t i = 0; i < kPoolSize; ++i) {
-    pool_[i] = hashMixAt(i < count ? words[i] : 0u, k++);
+    pool[i][0] = i < count ? words[i] : 0u;
   }
-  // Every word into every other, so that late words affect early ones.
-  for (std::size_t source = 0; source < kPoolSize; ++source) {
-    for (std::size_t target = 0; target < kPoolSize; ++target) {
-      if (source != target) {
-        pool_[target] = mix(pool_[target], hashMixAt(pool_[source], k++));
-      }
-    }
+  mixPoolWords(pool);
+  for (std::size_t i = 0; i < kPoolSize; ++i) {
+    pool_[i] = pool[i][0];
   }
   // Words beyond the pool are mixed into each pool word in turn.
   std::uint32_t hashConst = kHashA[kPoolHashes];
@@ -131,12 +169,14 @@ void SeedSequence::generateState(std::uint32_t* out, std::size_t count) const {
 
 void SeedSequence::generateState64(std::uint64_t* out, std::size_t count) const {
   if (count == 4) {  // PCG64's seed: constants from the table, the eight words side by side
-    for (std::size_t i = 0; i < 8; i += 2) {
-      std::uint32_t low = (pool_[i % kPoolSize] ^ kHashB[i]) * kHashB[i + 1];
-      std::uint32_t high = (pool_[(i + 1) % kPoolSize] ^ kHashB[i + 1]) * kHashB[i + 2];
-      low ^= low >> kXShift;
-      high ^= high >> kXShift;
-      out[i / 2] = low | (std::uint64_t{high} << 32);
+    std::uint32_t pool[kPoolSize][1];
+    std::uint64_t words[4][1];
+    for (std::size_t i = 0; i < kPoolSize; ++i) {
+      pool[i][0] = pool_[i];
+    }
+    pcgSeedWords(pool, words);
+    for (std::size_t i = 0; i < 4; ++i) {
+      out[i] = words[i][0];
     }
     return;
   }
@@ -161,6 +201,30 @@ Pcg64 Pcg64::forScene(std::uint64_t seed, std::uint64_t index) {
   Pcg64 engine{Unseeded{}};
   engine.seedFrom(SeedSequence::ofPair(seed, index));
   return engine;
+}
+
+void Pcg64::forScenes(std::uint64_t seed, std::uint64_t firstIndex, std::size_t count, Pcg64* out) {
+  constexpr std::size_t kLanes = 8;
+  for (std::size_t done = 0; done < count; done += kLanes) {
+    // [seed, index] is at most four words (SeedSequence::ofPair), zero-padded to the pool.
+    std::uint32_t pool[kPool][kLanes];
+    for (std::size_t lane = 0; lane < kLanes; ++lane) {
+      std::uint32_t words[kPool] = {};
+      std::size_t used = 0;
+      appendWords(seed, words, used);
+      appendWords(firstIndex + done + lane, words, used);  // past the end: computed, not used
+      for (std::size_t i = 0; i < kPool; ++i) {
+        pool[i][lane] = words[i];
+      }
+    }
+    mixPoolWords(pool);
+    std::uint64_t words[4][kLanes];
+    pcgSeedWords(pool, words);
+    for (std::size_t lane = 0; lane < kLanes && done + lane < count; ++lane) {
+      out[done + lane].seed((static_cast<Uint128>(words[0][lane]) << 64) | words[1][lane],
+                            (static_cast<Uint128>(words[2][lane]) << 64) | words[3][lane]);
+    }
+  }
 }
 
 void Pcg64::seedFrom(const SeedSequence& sequence) {

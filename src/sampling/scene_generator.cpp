@@ -1,6 +1,7 @@
 #include "placement_samplers/sampling/scene_generator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -20,9 +21,12 @@
 
 namespace placement_samplers {
 
-/// Per-thread state, reused from scene to scene: engine, checker and buffers.
+/// Per-thread state, reused from scene to scene: engines, checker and buffers.
 class SceneGenerator::Worker {
  public:
+  /// Scenes per chunk: a thread takes this many at a time.
+  static constexpr std::size_t kChunk = 16;
+
   Worker(const PreparedRequest& request, double margin)
       : request_(request),
         checker_(makeCollisionChecker(request.collisionCheck, margin)),
@@ -34,42 +38,70 @@ class SceneGenerator::Worker {
   }
   bool expired() const { return context_.expired(); }
 
-  /// Scene @p index of request seed @p seed: numpy's default_rng([seed, index]).
-  SceneResult run(std::uint64_t seed, std::uint64_t index) {
+  /// Scene @p index of request seed @p seed (numpy's default_rng([seed, index])) into
+  /// @p result, whose buffers are reused.
+  void run(std::uint64_t seed, std::uint64_t index, SceneResult& result) {
     engine_ = sceneEngine(seed, index);
     context_.setScene(seed, index);
-    return sample(seed, index);
+    sample(result);
+    result.seed = seed;
+    result.index = index;
+  }
+
+  /// Scenes @p index .. @p index + @p count - 1 (count <= kChunk) into @p results, as run()
+  /// would give them; once the time limit has passed, the rest come back "not sampled".
+  void runChunk(std::uint64_t seed, std::uint64_t index, std::size_t count, SceneResult* results) {
+    // Seeded together: each seeding is a chain of dependent multiplications that the CPU
+    // overlaps with the others' (Pcg64::forScenes).
+    Engine::forScenes(seed, index, count, chunkEngines_.data());
+    for (std::size_t k = 0; k < count; ++k) {
+      SceneResult& result = results[k];
+      result.seed = seed;
+      result.index = index + k;
+      if (expired()) {
+        result.success = false;
+        result.message = "not sampled: the request ran out of time";
+        result.placements.clear();
+        continue;
+      }
+      engine_ = chunkEngines_[k];
+      context_.setScene(seed, index + k);
+      sample(result);
+    }
   }
 
  private:
-  SceneResult sample(std::uint64_t seed, std::uint64_t index) {
+  void sample(SceneResult& result) {
     context_.clear();
-    SceneResult result;
-    result.seed = seed;
-    result.index = index;
+    result.success = false;
+    result.message.clear();
     const std::vector<FixtureSpec>& fixtures = request_.fixtures;
     for (std::size_t i = 0; i < fixtures.size(); ++i) {
       // Adding thousands of fixtures to FCL's broadphase takes long too: the clock covers it.
       if ((i & 63u) == 63u && expired()) {
         result.message = "not sampled: the request ran out of time while adding its " +
                          std::to_string(fixtures.size()) + " fixtures";
-        return result;
+        result.placements.clear();
+        return;
       }
       const FixtureSpec& f = fixtures[i];
       context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
     }
-    // Each result takes the placements away: one allocation of the right size, not a growth.
+    // The placements are built in the buffer the previous swap gave the context: a result's
+    // from the caller's previous block, or a fresh one (one allocation of the right size).
     context_.placements().reserve(objects_);
     result.success = request_.sampler->sample(context_, request_.reference, request_.onTop);
     if (!result.success) {
       result.message = context_.failure() ? context_.failure()->message : "sampling failed";
     }
-    result.placements = std::move(context_.placements());
-    return result;
+    // The result takes the placements and gives the context its old buffer: no copy, and no
+    // allocation once the caller's results have been filled before.
+    result.placements.swap(context_.placements());
   }
 
   const PreparedRequest& request_;
-  Engine engine_;
+  Engine engine_;  ///< the scene's stream, which context_ draws from
+  std::array<Engine, kChunk> chunkEngines_;
   std::unique_ptr<CollisionChecker> checker_;
   SampleContext context_;
   std::size_t objects_;  ///< objects the sampler places
@@ -296,7 +328,9 @@ SceneResult SceneGenerator::sampleScene(const PreparedRequest& request, std::uin
                                         std::uint64_t index) const {
   Worker worker(request, config_->collisionMargin);
   worker.setDeadline(request.deadline);
-  return worker.run(seed, index);
+  SceneResult result;
+  worker.run(seed, index, result);
+  return result;
 }
 
 std::vector<SceneResult> SceneGenerator::sampleScenes(const PreparedRequest& request,
@@ -310,8 +344,16 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
                                                           std::uint64_t seed, std::uint64_t first,
                                                           std::uint64_t count,
                                                           unsigned threads) const {
+  std::vector<SceneResult> results;
+  sampleSceneRange(request, seed, first, count, threads, results);
+  return results;
+}
+
+void SceneGenerator::sampleSceneRange(const PreparedRequest& request, std::uint64_t seed,
+                                      std::uint64_t first, std::uint64_t count, unsigned threads,
+                                      std::vector<SceneResult>& results) const {
   checkSceneRange(first, count);
-  std::vector<SceneResult> results(count);
+  results.resize(count);
   if (threads == 0) {
     threads = std::max(1u, std::thread::hardware_concurrency());
   }
@@ -323,24 +365,16 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
     Worker worker(request, config_->collisionMargin);
     worker.setDeadline(deadline);
     // Small chunks keep the threads balanced when some scenes take many attempts.
-    constexpr std::uint64_t kChunk = 16;
+    constexpr std::uint64_t kChunk = Worker::kChunk;
     for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
          begin = next.fetch_add(kChunk)) {
       const std::uint64_t end = std::min(count, begin + kChunk);
-      for (std::uint64_t i = begin; i < end; ++i) {
-        if (worker.expired()) {
-          results[i].seed = seed;
-          results[i].index = first + i;
-          results[i].message = "not sampled: the request ran out of time";
-          continue;
-        }
-        results[i] = worker.run(seed, first + i);
-      }
+      worker.runChunk(seed, first + begin, static_cast<std::size_t>(end - begin),
+                      results.data() + begin);
     }
   };
   // An exception in any worker (out of memory) stops the others and reaches the caller.
   detail::runOnThreads(threads, work, [&] { next = count; });
-  return results;
 }
 
 }  // namespace placement_samplers

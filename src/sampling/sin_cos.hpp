@@ -80,17 +80,19 @@ inline void sinCos(double angle, double& sine, double& cosine) {
   const auto q = static_cast<std::uint64_t>(static_cast<std::int64_t>(k));
   const detail::SinCosPair& b = detail::kSinCosTable[q & 31];
   // sin and cos of (q mod 32) pi/64 + r, the small corrections added last.
-  const double values[2] = {b.sine + (b.sine * cosRMinus1 + b.cosine * sinR),
-                            b.cosine + (b.cosine * cosRMinus1 - b.sine * sinR)};
-  // Quadrant (q / 32) mod 4: sin = (s, c, -s, -c), cos = (c, -s, -c, s); the swap by index
-  // and the signs on the bits, so that a random quadrant costs no mispredicted branch.
-  const std::uint64_t quadrant = (q >> 5) & 3;
-  const double s = values[quadrant & 1];
-  const double c = values[(quadrant & 1) ^ 1];
+  const double sinPart = b.sine + (b.sine * cosRMinus1 + b.cosine * sinR);
+  const double cosPart = b.cosine + (b.cosine * cosRMinus1 - b.sine * sinR);
+  // Quadrant (q / 32) mod 4: sin = (s, c, -s, -c), cos = (c, -s, -c, s); the swap and the
+  // signs on the bits, so that a random quadrant costs no mispredicted branch. The swap is a
+  // mask rather than an index into a stored pair, whose reload waited for the store.
   std::uint64_t sBits = 0;
   std::uint64_t cBits = 0;
-  std::memcpy(&sBits, &s, sizeof(s));
-  std::memcpy(&cBits, &c, sizeof(c));
+  std::memcpy(&sBits, &sinPart, sizeof(sinPart));
+  std::memcpy(&cBits, &cosPart, sizeof(cosPart));
+  const std::uint64_t quadrant = (q >> 5) & 3;
+  const std::uint64_t swapped = (sBits ^ cBits) & (0 - (quadrant & 1));  // all bits or none
+  sBits ^= swapped;
+  cBits ^= swapped;
   sBits ^= (quadrant & 2) << 62;
   cBits ^= ((quadrant + 1) & 2) << 62;
   std::memcpy(&sine, &sBits, sizeof(sine));

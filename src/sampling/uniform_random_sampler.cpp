@@ -200,7 +200,9 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
       context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
   const bool check = params_.ensureValidPlacement;
   const bool orientFirst = check && context.needsOrientation();
-  std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
+  // Rejections per entry, for the failure message; zeroed at the first rejection, since most
+  // objects are placed at their first attempt.
+  std::vector<std::uint32_t>* counts = nullptr;
 
   Candidate candidate;
   candidate.object = &object;
@@ -225,6 +227,9 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
     if (check) {
       const std::ptrdiff_t blocker = context.firstCollision(candidate);
       if (blocker != CollisionChecker::kNone) {
+        if (counts == nullptr) {
+          counts = &context.blockerCounts();
+        }
         ++(*counts)[static_cast<std::size_t>(blocker)];
         continue;
       }

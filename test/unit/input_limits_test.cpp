@@ -823,7 +823,7 @@ TEST(InputLimits, FreedMemoryIsReturnedAfterLargeBatches) {
     for (const SceneResult& scene : scenes) {
       answer.emplace_back();
       for (const ObjectPlacement& p : scene.placements) {
-        answer.back().push_back(Message{p.name, std::string(p.sampler), {}});
+        answer.back().push_back(Message{std::string(p.name), std::string(p.sampler), {}});
       }
       if (answer.size() % 100 == 0) {
         kept.push_back(std::make_unique<std::string>(100, 'k'));

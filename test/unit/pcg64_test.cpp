@@ -89,6 +89,32 @@ TEST(Pcg64, SeededStateIsNumpys) {
   }
 }
 
+TEST(Pcg64, ScenesSeededTogetherAreScenesSeededAlone) {
+  // forScenes against forScene (which the numpy vectors check): counts that are not a multiple
+  // of its lanes, seeds and indices of one and two 32-bit words, indices across 2^32.
+  const std::uint64_t seeds[] = {
+      0, 1, 20240605, 0xffffffffULL, 0x100000000ULL, std::numeric_limits<std::uint64_t>::max()};
+  const std::uint64_t firsts[] = {0,
+                                  1,
+                                  1000,
+                                  0xffffffffULL - 9,
+                                  0x100000000ULL,
+                                  std::numeric_limits<std::uint64_t>::max() - 20};
+  for (const std::uint64_t seed : seeds) {
+    for (const std::uint64_t first : firsts) {
+      for (const std::size_t count :
+           {std::size_t{1}, std::size_t{7}, std::size_t{16}, std::size_t{21}}) {
+        std::array<Engine, 21> engines;
+        Engine::forScenes(seed, first, count, engines.data());
+        for (std::size_t k = 0; k < count; ++k) {
+          EXPECT_EQ(engines[k].stateWords(), sceneEngine(seed, first + k).stateWords())
+              << "seed " << seed << ", scene " << first + k;
+        }
+      }
+    }
+  }
+}
+
 TEST(Pcg64, RawOutputsAreNumpys) {
   for (const NumpyRow& row : kRows) {
     Engine engine = engineOf(row);

@@ -91,7 +91,7 @@ TEST(SceneGenerator, SamplesTheConfiguredScene) {
   EXPECT_TRUE(scene.message.empty());
   std::vector<std::string> names;
   for (const ObjectPlacement& p : scene.placements) {
-    names.push_back(p.name);
+    names.emplace_back(p.name);
   }
   // Sampling order, the hidden object last, no fixture.
   EXPECT_EQ(names, (std::vector<std::string>{"plate", "cup", "cube", "can", "ball", "pill"}));

@@ -208,7 +208,7 @@ TEST_F(SceneValidatorTest, BadPoses) {
 std::vector<GivenPose> posesOf(const SceneResult& scene) {
   std::vector<GivenPose> poses;
   for (const ObjectPlacement& p : scene.placements) {
-    poses.push_back(GivenPose{p.name, p.position, p.orientation});
+    poses.push_back(GivenPose{std::string(p.name), p.position, p.orientation});
   }
   return poses;
 }

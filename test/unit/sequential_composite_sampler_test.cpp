@@ -56,7 +56,7 @@ std::vector<std::string> names(const std::vector<ObjectPtr>& objects) {
 std::vector<std::string> names(const std::vector<ObjectPlacement>& placements) {
   std::vector<std::string> out;
   for (const ObjectPlacement& p : placements) {
-    out.push_back(p.name);
+    out.emplace_back(p.name);
   }
   return out;
 }

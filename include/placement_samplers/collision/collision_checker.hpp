@@ -13,6 +13,16 @@ namespace placement_samplers {
 
 /// Something already in the scene: a fixture or an object placed earlier in the scene.
 struct PlacedEntry {
+  PlacedEntry() = default;
+  /// Every member, so that std::vector::emplace_back builds an entry in place.
+  PlacedEntry(std::string_view name, const ObjectModel* object, const Eigen::Vector3d& position,
+              const Eigen::Quaterniond& orientation, bool fixture)
+      : name(name),
+        object(object),
+        position(position),
+        orientation(orientation),
+        fixture(fixture) {}
+
   /// The object's or fixture's name, owned by the configuration or the request: a view, so
   /// that placing an object copies no string.
   std::string_view name;

@@ -5,6 +5,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <string>
+#include <string_view>
 
 #include "placement_samplers/sampling/scene_generator.hpp"
 
@@ -22,7 +23,7 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
 
 /// The colour of the object called @p name: a hue from a hash of the name, so an object keeps
 /// its colour from call to call and run to run.
-std_msgs::ColorRGBA objectColour(const std::string& name);
+std_msgs::ColorRGBA objectColour(std::string_view name);
 
 /// A DELETEALL alone: removes every marker of the previous scene.
 visualization_msgs::MarkerArray makeClearMarkers();

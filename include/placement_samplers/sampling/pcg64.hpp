@@ -63,6 +63,11 @@ class Pcg64 {
 
   /// numpy's default_rng([seed, index]): the stream of scene @p index of request seed @p seed.
   static Pcg64 forScene(std::uint64_t seed, std::uint64_t index);
+  /// forScene(seed, firstIndex + k) into out[k] for k < @p count: the engines of consecutive
+  /// scenes, seeded side by side. Seeding one is a long chain of dependent multiplications
+  /// (SeedSequence); several together keep the CPU busy while each waits.
+  static void forScenes(std::uint64_t seed, std::uint64_t firstIndex, std::size_t count,
+                        Pcg64* out);
 
   /// The next 64-bit output (numpy's next_uint64, random_raw()).
   result_type operator()() {

@@ -11,16 +11,31 @@
 namespace placement_samplers {
 
 /// One sampled object pose.
+///
+/// The names are views of strings owned by the configuration (as @ref object is), so that
+/// placing an object copies no string. The aligned quaternion comes right after them, so
+/// that no member needs padding.
 struct ObjectPlacement {
-  std::string name;  ///< object name
-  /// Name of the uniform sampler that placed it, owned by the configuration (as @ref object):
-  /// a view, so that a scene's result costs no allocation per placement.
-  std::string_view sampler;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< object origin [m]
+  ObjectPlacement() = default;
+  /// Every member, so that std::vector::emplace_back builds a placement in place.
+  ObjectPlacement(std::string_view name, std::string_view sampler,
+                  const Eigen::Quaterniond& orientation, const Eigen::Vector3d& position,
+                  const ObjectModel* object, std::uint32_t attempts, bool hidden)
+      : name(name),
+        sampler(sampler),
+        orientation(orientation),
+        position(position),
+        object(object),
+        attempts(attempts),
+        hidden(hidden) {}
+
+  std::string_view name;     ///< object name: `object->name`
+  std::string_view sampler;  ///< name of the uniform sampler that placed it
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  std::uint32_t attempts = 0;           ///< samples drawn, the accepted one included
-  const ObjectModel* object = nullptr;  ///< geometry (owned by the configuration)
-  bool hidden = false;                  ///< placed by hide(): far away, not to be drawn
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< object origin [m]
+  const ObjectModel* object = nullptr;                 ///< geometry
+  std::uint32_t attempts = 0;                          ///< samples drawn, the accepted one included
+  bool hidden = false;  ///< placed by hide(): far away, not to be drawn
 };
 
 /// Why a scene could not be completed.
@@ -34,7 +49,8 @@ struct Failure {
 };
 
 /// The outcome of one scene. Its placements point into the configuration that sampled them
-/// (`object`, `sampler`): keep the SceneGenerator, or its configPtr(), as long as the result.
+/// (`name`, `sampler`, `object`): keep the SceneGenerator, or its configPtr(), as long as the
+/// result.
 struct SceneResult {
   std::uint64_t seed = 0;   ///< the request seed
   std::uint64_t index = 0;  ///< the scene index within the request

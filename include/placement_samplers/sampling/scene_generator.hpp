@@ -109,6 +109,14 @@ class SceneGenerator {
                                             std::uint64_t first, std::uint64_t count,
                                             unsigned threads = 1) const;
 
+  /// As above, into @p results (resized to @p count). The results' buffers are reused: a
+  /// caller that takes many blocks into the same vector allocates nothing per scene once the
+  /// first block is done (a scene's placements otherwise cost one allocation and one free).
+  /// @throw RequestError when @p first + @p count exceeds 2^64 - 1
+  void sampleSceneRange(const PreparedRequest& request, std::uint64_t seed, std::uint64_t first,
+                        std::uint64_t count, unsigned threads,
+                        std::vector<SceneResult>& results) const;
+
  private:
   class Worker;
   std::shared_ptr<const SceneConfig> config_;
