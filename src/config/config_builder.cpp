@@ -176,7 +176,7 @@ class Builder {
     detail::checkSamplerKeys(
         item, {"type", "objects", "x_range", "y_range", "rotation", "rotation_axis",
                "ensure_object_boundary_in_range", "ensure_valid_placement", "reference_pos",
-               "z_offset", "sample_args", "max_attempts", "region", "keep_out"});
+               "z_offset", "sample_args", "max_attempts", "region", "keep_out", "strategy"});
     const std::string name = samplerName(item);
     const ConfigNode& s = *item.params;
     const UniformSamplerParams p = detail::parseUniformParams(s, config_.maxAttempts);

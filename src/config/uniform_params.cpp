@@ -27,6 +27,15 @@ UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAt
   if (const ConfigNode* n = s.get("keep_out")) {
     p.keepOut = parseKeepOut(*n);
   }
+  if (const ConfigNode* n = s.get("strategy")) {
+    const std::string& strategy = n->asString();
+    if (strategy != "rejection" && strategy != "free_space") {
+      n->fail("expected rejection or free_space, got " + quoteText(strategy));
+    }
+    if (strategy == "free_space") {
+      p.strategy = UniformSamplerParams::Strategy::FreeSpace;
+    }
+  }
   if (const ConfigNode* n = s.get("rotation")) {
     if (n->type() == ConfigNode::Type::Null) {
       p.rotation = RotationSpec::full();

@@ -157,6 +157,9 @@ void appendUniform(std::string& out, const UniformRandomSampler& sampler) {
   appendNumber(out, p.zOffset);
   out += ", \"max_attempts\": ";
   appendInteger(out, p.maxAttempts);
+  if (p.strategy == UniformSamplerParams::Strategy::FreeSpace) {
+    out += ", \"strategy\": \"free_space\"";
+  }
   if (p.region) {
     out += ", \"region\": ";
     appendShape(out, *p.region, nullptr);

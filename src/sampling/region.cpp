@@ -277,6 +277,47 @@ double distanceToShape(const RegionShape& s, const Eigen::Vector2d& p) {
   return 0.0;
 }
 
+double shapeDepth(const RegionShape& s, const Eigen::Vector2d& p) {
+  const auto box = [](const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                      const Eigen::Vector2d& q) {
+    const double inside =
+        std::min({q.x() - lo.x(), hi.x() - q.x(), q.y() - lo.y(), hi.y() - q.y()});
+    return inside >= 0.0 ? inside : -boxDistance(lo, hi, q);
+  };
+  switch (s.kind) {
+    case RegionShape::Kind::Rectangle:
+      return box(Eigen::Vector2d(s.xRange[0], s.yRange[0]),
+                 Eigen::Vector2d(s.xRange[1], s.yRange[1]), p);
+    case RegionShape::Kind::RotatedRectangle:
+      return box(-0.5 * s.size, 0.5 * s.size, local(s, p));
+    case RegionShape::Kind::Disk:
+      return s.radius - (p - s.centre).norm();
+    case RegionShape::Kind::Annulus: {
+      const double d = (p - s.centre).norm();
+      return std::min(d - s.innerRadius, s.radius - d);
+    }
+    case RegionShape::Kind::Polygon: {
+      const double d = detail::boundaryDistance(s.vertices, p);
+      return detail::polygonContains(s.vertices, p) ? d : -d;
+    }
+  }
+  return 0.0;
+}
+
+void shapeBounds(const RegionShape& s, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
+  if (s.kind == RegionShape::Kind::Disk || s.kind == RegionShape::Kind::Annulus) {
+    lo = s.centre - Eigen::Vector2d::Constant(s.radius);
+    hi = s.centre + Eigen::Vector2d::Constant(s.radius);
+    return;
+  }
+  const std::vector<Eigen::Vector2d> corners = shapeTriangles(s);
+  lo = hi = corners.front();
+  for (const Eigen::Vector2d& c : corners) {
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+}
+
 bool isConvexPolygon(const std::vector<Eigen::Vector2d>& v) {
   bool left = false;
   bool right = false;

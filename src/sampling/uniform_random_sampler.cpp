@@ -186,6 +186,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
       base.z() += ref->object->topOffset.z();
     }
   }
+  if (params_.strategy == UniformSamplerParams::Strategy::FreeSpace) {
+    return sampleFreeSpace(context, base, onTop);
+  }
   for (const Entry& entry : entries_) {
     if (!placeOne(context, entry, base, onTop)) {
       return false;

@@ -56,6 +56,13 @@ bool shapeContains(const RegionShape& shape, const Eigen::Vector2d& p);
 /// The distance from @p p to the shape, 0 inside [m].
 double distanceToShape(const RegionShape& shape, const Eigen::Vector2d& p);
 
+/// The signed distance from @p p to the shape's boundary: positive inside, negative outside
+/// [m]. It changes by at most |dp| when p moves by dp (free_space prunes whole cells with it).
+double shapeDepth(const RegionShape& shape, const Eigen::Vector2d& p);
+
+/// The shape's axis-aligned bounding box [m].
+void shapeBounds(const RegionShape& shape, Eigen::Vector2d& lo, Eigen::Vector2d& hi);
+
 /// The shape as triangles (three corners each) in its frame [m], disks and annuli as
 /// @p segments-gons: for display.
 std::vector<Eigen::Vector2d> shapeTriangles(const RegionShape& shape, int segments = 48);

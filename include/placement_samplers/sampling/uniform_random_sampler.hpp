@@ -41,6 +41,10 @@ struct UniformSamplerParams {
   /// rectangle is turned into xRange/yRange.
   std::optional<RegionShape> region;
   std::vector<KeepOutZone> keepOut;  ///< where no placed object may be
+  /// rejection: robosuite's blind attempts; free_space: draws only from grid cells not yet
+  /// known to be blocked (the same distribution, uniform over the free positions)
+  enum class Strategy { Rejection, FreeSpace };
+  Strategy strategy = Strategy::Rejection;
 };
 
 /// robosuite's UniformRandomSampler: rejection sampling of x and y in ranges around a
@@ -81,6 +85,8 @@ class UniformRandomSampler : public PlacementSampler {
   /// placeOne() for a region shape or keep-out zones (shaped_placement.cpp).
   bool placeOneShaped(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                       bool onTop) const;
+  /// sample() with strategy free_space (free_space_placement.cpp).
+  bool sampleFreeSpace(SampleContext& context, const Eigen::Vector3d& base, bool onTop) const;
   /// Records that @p object could not be placed in @p limit attempts; @p outside of them fell
   /// outside the inset region or into a keep-out zone. @return false
   bool failPlacement(SampleContext& context, const ObjectModel& object, std::uint32_t limit,
