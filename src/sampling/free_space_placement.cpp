@@ -24,6 +24,57 @@ struct CellKey {
   }
 };
 
+/// The entries that may block an object, bucketed by their x-y (sampler frame) in squares of
+/// the largest reach, so that testing a cell reads the entries of the 3 x 3 squares around it.
+class NearbyEntries {
+ public:
+  void reset(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double side) {
+    const Eigen::Vector2d extent = hi - lo;
+    side_ = std::max(side, std::sqrt(extent.x() * extent.y() / 65536.0));
+    lo_ = lo;
+    nx_ = std::max(1, static_cast<int>(std::ceil(extent.x() / side_)));
+    ny_ = std::max(1, static_cast<int>(std::ceil(extent.y() / side_)));
+    buckets_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
+    for (std::vector<std::size_t>& bucket : buckets_) {
+      bucket.clear();  // keeps its buffer for the next scene
+    }
+  }
+  void add(std::size_t index, const Eigen::Vector2d& p) {
+    buckets_[static_cast<std::size_t>(row(p.y()) * nx_ + column(p.x()))].push_back(index);
+  }
+  /// True when @p f is true for an entry of the squares around @p p; entries outside the grid
+  /// sit in its border squares, so every entry within one side of @p p is read.
+  template <typename F>
+  bool any(const Eigen::Vector2d& p, const F& f) const {
+    const int i = column(p.x());
+    const int j = row(p.y());
+    for (int b = std::max(j - 1, 0); b <= std::min(j + 1, ny_ - 1); ++b) {
+      for (int a = std::max(i - 1, 0); a <= std::min(i + 1, nx_ - 1); ++a) {
+        for (const std::size_t index : buckets_[static_cast<std::size_t>(b * nx_ + a)]) {
+          if (f(index)) {
+            return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+ private:
+  int column(double x) const {
+    return std::clamp(static_cast<int>(std::floor((x - lo_.x()) / side_)), 0, nx_ - 1);
+  }
+  int row(double y) const {
+    return std::clamp(static_cast<int>(std::floor((y - lo_.y()) / side_)), 0, ny_ - 1);
+  }
+
+  Eigen::Vector2d lo_ = Eigen::Vector2d::Zero();
+  double side_ = 1.0;
+  int nx_ = 1;
+  int ny_ = 1;
+  std::vector<std::vector<std::size_t>> buckets_;
+};
+
 }  // namespace
 
 bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::Vector3d& base,
@@ -39,7 +90,9 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
   // robosuite's radius test prunes cells only when it is the whole test: the fcl modes may
   // accept what it refuses, so there only the region and the keep-out zones prune.
   const bool prune = check && !context.needsOrientation();
-  detail::FreeCells cells;
+  // Per thread, so that their buffers serve every scene (nothing here calls another sampler).
+  thread_local detail::FreeCells cells;
+  thread_local NearbyEntries nearby;
   CellKey previous;
   std::size_t applied = 0;
 
@@ -52,12 +105,13 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     // Whole cells (centre c, half diagonal h, in the sampler's frame) known to be blocked: the
     // distances change by at most h over the cell. The disks shrink by a hair, so rounding
     // never drops a free position.
+    const auto blocks = [&](const PlacedEntry& e) {
+      return z - e.position.z() <= e.object->topOffset.z() - bottom;  // robosuite's z half
+    };
     const auto disk = [&](const PlacedEntry& e, const Eigen::Vector2d& c, double h) {
-      if (!(z - e.position.z() <= e.object->topOffset.z() - bottom)) {
-        return false;  // below or beside it in z: robosuite's test lets it pass
-      }
       const double reach = radius + e.object->horizontalRadius;
-      return (c + offset - e.position.head<2>()).norm() + h < reach * (1.0 - 1e-12) - 1e-12;
+      const double inside = reach * (1.0 - 1e-12) - 1e-12 - h;
+      return inside > 0.0 && (c + offset - e.position.head<2>()).squaredNorm() < inside * inside;
     };
     const auto covered = [&](const Eigen::Vector2d& c, double h) {
       if (shapeDepth(region, c) + h < margin) {
@@ -68,14 +122,8 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
           return true;
         }
       }
-      if (prune) {
-        for (const PlacedEntry& e : context.entries()) {
-          if (disk(e, c, h)) {
-            return true;
-          }
-        }
-      }
-      return false;
+      return prune &&
+             nearby.any(c, [&](std::size_t i) { return disk(context.entries()[i], c, h); });
     };
 
     const CellKey key{radius, margin, z, bottom};
@@ -93,15 +141,28 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
         previous = CellKey();
         continue;
       }
-      const double side = radius > 0.0 ? radius : (hi - lo).maxCoeff() / 32.0;
+      const double side = radius > 0.0 ? 2.0 * radius : (hi - lo).maxCoeff() / 32.0;
       cells.reset(lo, hi, side, kMaxCells);
+      double reach = 2.0 * radius;
+      for (const PlacedEntry& e : context.entries()) {
+        reach = std::max(reach, radius + e.object->horizontalRadius);
+      }
+      nearby.reset(lo, hi, std::max(reach, 1e-6));
+      for (std::size_t i = 0; prune && i < context.entries().size(); ++i) {
+        if (blocks(context.entries()[i])) {
+          nearby.add(i, context.entries()[i].position.head<2>() - offset);
+        }
+      }
       cells.dropIf(covered);
       previous = key;
     } else if (prune) {
       // Same object size and height: only the objects placed since can block more.
       for (std::size_t i = applied; i < context.entries().size(); ++i) {
         const PlacedEntry& e = context.entries()[i];
-        cells.dropIf([&](const Eigen::Vector2d& c, double h) { return disk(e, c, h); });
+        if (blocks(e)) {
+          nearby.add(i, e.position.head<2>() - offset);
+          cells.dropIf([&](const Eigen::Vector2d& c, double h) { return disk(e, c, h); });
+        }
       }
     }
     applied = context.entries().size();
