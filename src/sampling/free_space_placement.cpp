@@ -141,7 +141,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
         previous = CellKey();
         continue;
       }
-      const double side = radius > 0.0 ? 2.0 * radius : (hi - lo).maxCoeff() / 32.0;
+      const double side = radius > 0.0 ? radius : (hi - lo).maxCoeff() / 32.0;
       cells.reset(lo, hi, side, kMaxCells);
       double reach = 2.0 * radius;
       for (const PlacedEntry& e : context.entries()) {
