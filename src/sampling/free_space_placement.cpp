@@ -87,9 +87,10 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
   const bool check = params_.ensureValidPlacement;
   const bool orientFirst = check && context.needsOrientation();
-  // robosuite's radius test prunes cells only when it is the whole test: the fcl modes may
-  // accept what it refuses, so there only the region and the keep-out zones prune.
-  const bool prune = check && !context.needsOrientation();
+  // robosuite's radius test prunes cells only when the check includes it (radius,
+  // radius_and_fcl): fcl alone may accept what it refuses, so there only the region and the
+  // keep-out zones prune.
+  const bool prune = check && context.includesRadiusTest();
   // Per thread, so that their buffers serve every scene (nothing here calls another sampler).
   thread_local detail::FreeCells cells;
   thread_local NearbyEntries nearby;
