@@ -205,9 +205,8 @@ class Builder {
       // Point at the parameter the sampler complains about when it names one.
       const std::string message = e.what();
       const ConfigNode* where = &s;
-      for (const char* key :
-           {"x_range", "y_range", "rotation", "reference_pos", "z_offset", "max_attempts",
-            "region"}) {
+      for (const char* key : {"x_range", "y_range", "rotation", "reference_pos", "z_offset",
+                              "max_attempts", "region"}) {
         if (message.find(std::string("': ") + key + " ") != std::string::npos && s.get(key)) {
           where = s.get(key);
         }

@@ -303,7 +303,8 @@ TEST(ConfigBuilder, UnknownKeysNameThePath) {
   EXPECT_EQ(buildError("samplers:\n  - {name: S, x_rnage: [0, 1]}\n"),
             "samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, x_range, "
             "y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
-            "ensure_valid_placement, reference_pos, z_offset, sample_args, max_attempts, region, keep_out, strategy)");
+            "ensure_valid_placement, reference_pos, z_offset, sample_args, max_attempts, region, "
+            "keep_out, strategy)");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [1, 1, 1], radius: 1}\n"),
             "objects.cube: unknown key 'radius' (expected one of: shape, size, horizontal_radius, "
             "bottom_offset, top_offset, init_orientation)");
