@@ -11,7 +11,7 @@ PS_BUILD="${PLACEMENT_SAMPLERS_BUILD:-$(dirname "$PS_ROOT")/build_$(basename "$P
 
 PS_PACKAGES=(
   cmake g++ make catkin ros-core ros-core-dev rosbash
-  libroscpp-dev ros-message-generation ros-message-runtime python3-genpy python3-gencpp python3-genmsg
+  libroscpp-dev libroslib-dev ros-message-generation ros-message-runtime python3-genpy python3-gencpp python3-genmsg
   libstd-msgs-dev ros-std-msgs libgeometry-msgs-dev ros-geometry-msgs
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs
   libshape-msgs-dev ros-shape-msgs libstd-srvs-dev ros-std-srvs
@@ -19,6 +19,8 @@ PS_PACKAGES=(
   liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev libassimp-dev
   librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev
   libyaml-cpp-dev catkin-lint
+  # ctest clang_format checks the layout of every C++ file with Debian 12's clang-format (14).
+  clang-format
   # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it.
   zlib1g-dev
   # MuJoCo reads MJCF objects; its CMake config needs OpenGL's and qhull's development files

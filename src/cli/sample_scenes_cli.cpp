@@ -10,6 +10,7 @@
 
 #include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/sampling/failure_summary.hpp"
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/output/scene_json.hpp"
@@ -57,15 +58,14 @@ constexpr std::uint64_t kBlock = 8192;
 constexpr std::uint64_t kBlockPlacements = 1 << 20;
 
 /// Samples and prints scenes firstScene .. firstScene + count - 1 in blocks; formatting is spread
-/// over the threads too, since printing a scene costs more than sampling it. @return true when all
-/// succeeded.
-bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
-                 std::uint64_t seed, std::uint64_t firstScene, std::uint64_t count,
-                 unsigned threads, std::ostream& out) {
+/// over the threads too, since printing a scene costs more than sampling it. @return what failed
+FailureSummary writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
+                           std::uint64_t seed, std::uint64_t firstScene, std::uint64_t count,
+                           unsigned threads, std::ostream& out) {
   const unsigned workers =
       threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::string> texts(workers);
-  bool allPlaced = true;
+  FailureSummary failures;
   const std::uint64_t perScene = std::max<std::uint64_t>(generator.placementsPerScene(prepared), 1);
   const std::uint64_t block = std::clamp<std::uint64_t>(kBlockPlacements / perScene, 1, kBlock);
   for (std::uint64_t first = 0; first < count; first += block) {
@@ -95,11 +95,11 @@ bool writeScenes(const SceneGenerator& generator, const PreparedRequest& prepare
       out.write(texts[slice].data(), static_cast<std::streamsize>(texts[slice].size()));
     }
     for (const SceneResult& scene : results) {
-      allPlaced = allPlaced && scene.success;
+      failures.add(scene);
     }
   }
   out.flush();
-  return allPlaced;
+  return failures;
 }
 
 }  // namespace
@@ -208,12 +208,14 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     if (seed == 0) {
       seed = randomSeed();  // a fresh seed, printed with every scene
     }
-    if (scenes > 0 && scenes - 1 > std::numeric_limits<std::uint64_t>::max() - firstScene) {
-      err << "sample_scenes: --first-scene " << firstScene << " with --scenes " << scenes
-          << ": scene indices must stay below 2^64\n";
-      return 2;
+    checkSceneRange(firstScene, scenes);  // before the first block is written
+    const FailureSummary failures =
+        writeScenes(generator, prepared, seed, firstScene, scenes, threads, out);
+    if (failures.failed() != 0) {
+      err << "sample_scenes: " << failures.message(scenes) << "\n";
+      return 1;
     }
-    return writeScenes(generator, prepared, seed, firstScene, scenes, threads, out) ? 0 : 1;
+    return 0;
   } catch (const ConfigError& e) {
     err << "sample_scenes: " << shownPath << ": " << e.what() << "\n";
   } catch (const RequestError& e) {

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "collision/fcl_compat.hpp"
+#include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
@@ -258,10 +259,7 @@ struct FclChecker::Impl {
 };
 
 FclChecker::FclChecker(double margin, std::size_t listLimit) {
-  if (!std::isfinite(margin) || margin < 0.0) {
-    throw std::invalid_argument("collision margin must be finite and non-negative, got " +
-                                std::to_string(margin));
-  }
+  checkCollisionMargin(margin);
   impl_ = std::make_unique<Impl>(margin);
   impl_->listLimit = listLimit;
 }

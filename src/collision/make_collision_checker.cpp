@@ -1,24 +1,28 @@
 #include "placement_samplers/collision/make_collision_checker.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "placement_samplers/collision/combined_checker.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/collision/fcl_checker.hpp"
 #include "placement_samplers/collision/radius_checker.hpp"
 
 namespace placement_samplers {
 
-void checkCollisionMode(CollisionMode mode, double margin) {
-  if (mode != CollisionMode::Radius && (!std::isfinite(margin) || margin < 0.0)) {
-    throw ConfigError("collision_margin must be finite and non-negative, got " +
-                      std::to_string(margin));
+void checkCollisionMargin(double margin) {
+  if (!std::isfinite(margin) || margin < 0.0 || margin > limits::kCoordinate) {
+    std::ostringstream out;
+    out << "expected a finite, non-negative clearance in [m] of at most " << limits::kCoordinate
+        << ", got " << margin;
+    throw ConfigError(out.str());
   }
 }
 
 std::unique_ptr<CollisionChecker> makeCollisionChecker(CollisionMode mode, double margin) {
-  checkCollisionMode(mode, margin);
+  checkCollisionMargin(margin);
   if (mode == CollisionMode::Radius) {
     return std::make_unique<RadiusChecker>();
   }

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "placement_samplers/config/config_node.hpp"
-#include "placement_samplers/config/scene_config.hpp"
+#include "placement_samplers/sampling/scene_config.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 
 namespace placement_samplers::detail {

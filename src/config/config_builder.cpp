@@ -256,8 +256,6 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
     builder.hide(*n);
   }
   builder.warnUnplaced();
-  // Fails now rather than on the first request.
-  checkCollisionMode(config->collisionCheck, config->collisionMargin);
   return config;
 }
 

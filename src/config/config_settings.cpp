@@ -5,6 +5,7 @@
 #include "config/builder_parts.hpp"
 #include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
 #include "placement_samplers/text.hpp"
 
@@ -114,14 +115,10 @@ void readSettings(const ConfigNode& root, SceneConfig& config) {
   }
   if (const ConfigNode* n = root.get("collision_margin")) {
     config.collisionMargin = n->asDouble();
-    if (config.collisionMargin < 0.0) {
-      n->fail("expected a non-negative clearance in [m]");
-    }
-    if (config.collisionMargin > limits::kCoordinate) {
-      std::ostringstream out;
-      out << "expected a non-negative clearance in [m] of at most " << limits::kCoordinate
-          << ", got " << config.collisionMargin;
-      n->fail(out.str());
+    try {
+      checkCollisionMargin(config.collisionMargin);
+    } catch (const ConfigError& e) {
+      n->fail(e.what());
     }
   }
   if (const ConfigNode* n = root.get("max_attempts")) {

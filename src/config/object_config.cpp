@@ -28,19 +28,14 @@ void checkShapeKeys(const ConfigNode& node, std::vector<std::string> shapeKeys,
   node.checkKeys(shapeKeys);
 }
 
-double positive(const ConfigNode& node) {
-  const double v = node.asDouble();
-  if (v <= 0.0) {
-    std::ostringstream out;
-    out << "expected a positive size in [m], got " << v;
-    node.fail(out.str());
+/// @p shape checked by validateShape(), an error pointing at @p node.
+Shape checked(Shape shape, const ConfigNode& node) {
+  try {
+    validateShape(shape);
+  } catch (const ConfigError& e) {
+    node.fail(e.what());
   }
-  if (v > limits::kCoordinate) {
-    std::ostringstream out;
-    out << "expected a positive size in [m] of at most " << limits::kCoordinate << ", got " << v;
-    node.fail(out.str());
-  }
-  return v;
+  return shape;
 }
 
 /// Why @p shapes under @p orientation reach beyond limits::kCoordinate from the origin (or are
@@ -201,28 +196,26 @@ Shape parsePrimitive(const std::string& name, const ConfigNode& node, MeshLoader
   if (type == "box") {
     checkShapeKeys(node, {"shape", "size"}, context);
     const ConfigNode& size = node.at("size");
-    const Eigen::Vector3d s = size.asVector3();
-    const bool positive = (s.array() > 0.0).all();
-    if (!positive || (s.array() > limits::kCoordinate).any()) {
-      std::ostringstream out;
-      out << "expected three positive extents [x, y, z] in [m]";
-      if (positive) {
-        out << " of at most " << limits::kCoordinate;
-      }
-      out << ", got [" << s.x() << ", " << s.y() << ", " << s.z() << "]";
-      size.fail(out.str());
-    }
-    return Shape::box(s);
+    return checked(Shape::box(size.asVector3()), size);
   }
   if (type == "cylinder" || type == "capsule") {
     checkShapeKeys(node, {"shape", "radius", "length"}, context);
-    const double radius = positive(node.at("radius"));
-    const double length = positive(node.at("length"));
-    return type == "cylinder" ? Shape::cylinder(radius, length) : Shape::capsule(radius, length);
+    const ConfigNode& radius = node.at("radius");
+    const ConfigNode& length = node.at("length");
+    const Shape shape = type == "cylinder" ? Shape::cylinder(radius.asDouble(), length.asDouble())
+                                           : Shape::capsule(radius.asDouble(), length.asDouble());
+    // The error points at the size it names.
+    try {
+      validateShape(shape);
+    } catch (const ConfigError& e) {
+      (std::string(e.what()).find(" length ") != std::string::npos ? length : radius)
+          .fail(e.what());
+    }
+    return shape;
   }
   if (type == "sphere") {
     checkShapeKeys(node, {"shape", "radius"}, context);
-    return Shape::sphere(positive(node.at("radius")));
+    return checked(Shape::sphere(node.at("radius").asDouble()), node.at("radius"));
   }
   shapeNode.fail("expected one of box, cylinder, sphere, capsule, mesh, got " + quoteText(type));
 }
@@ -282,41 +275,6 @@ Eigen::Quaterniond parseQuaternion(const ConfigNode& node) {
     node.fail(out.str());
   }
   return q.normalized();
-}
-
-void validateShape(const Shape& shape) {
-  auto check = [](double v, const char* what) {
-    if (!std::isfinite(v) || v <= 0.0) {
-      std::ostringstream out;
-      out << what << " must be finite and positive, got " << v;
-      throw ConfigError(out.str());
-    }
-    if (v > limits::kCoordinate) {
-      std::ostringstream out;
-      out << what << " must be at most " << limits::kCoordinate << " m, got " << v;
-      throw ConfigError(out.str());
-    }
-  };
-  switch (shape.type) {
-    case ShapeType::Box:
-      check(shape.size.x(), "box size x");
-      check(shape.size.y(), "box size y");
-      check(shape.size.z(), "box size z");
-      break;
-    case ShapeType::Cylinder:
-    case ShapeType::Capsule:
-      check(shape.radius, "radius");
-      check(shape.length, "length");
-      break;
-    case ShapeType::Sphere:
-      check(shape.radius, "radius");
-      break;
-    case ShapeType::Mesh:
-      if (!shape.mesh || shape.mesh->vertices.empty()) {
-        throw ConfigError("mesh has no vertices");
-      }
-      break;
-  }
 }
 
 ObjectModel parseObject(const std::string& name, const ConfigNode& node) {

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -116,6 +120,42 @@ const char* shapeTypeName(ShapeType type) {
   return "unknown";
 }
 
+void validateShape(const Shape& shape) {
+  const std::string type = shapeTypeName(shape.type);
+  auto check = [&](double v, const char* what) {
+    if (!std::isfinite(v) || v <= 0.0) {
+      std::ostringstream out;
+      out << type << " " << what << " must be finite and positive, got " << v;
+      throw ConfigError(out.str());
+    }
+    if (v > limits::kCoordinate) {
+      std::ostringstream out;
+      out << type << " " << what << " must be at most " << limits::kCoordinate << " m, got " << v;
+      throw ConfigError(out.str());
+    }
+  };
+  switch (shape.type) {
+    case ShapeType::Box:
+      check(shape.size.x(), "size x");
+      check(shape.size.y(), "size y");
+      check(shape.size.z(), "size z");
+      break;
+    case ShapeType::Cylinder:
+    case ShapeType::Capsule:
+      check(shape.radius, "radius");
+      check(shape.length, "length");
+      break;
+    case ShapeType::Sphere:
+      check(shape.radius, "radius");
+      break;
+    case ShapeType::Mesh:
+      if (!shape.mesh || shape.mesh->vertices.empty()) {
+        throw ConfigError("mesh has no vertices");
+      }
+      break;
+  }
+}
+
 Shape Shape::box(const Eigen::Vector3d& size) {
   Shape s;
   s.type = ShapeType::Box;
@@ -123,27 +163,23 @@ Shape Shape::box(const Eigen::Vector3d& size) {
   return s;
 }
 
-Shape Shape::cylinder(double radius, double length) {
+/// A shape given by a radius and a length (cylinder, sphere, capsule).
+static Shape roundShape(ShapeType type, double radius, double length) {
   Shape s;
-  s.type = ShapeType::Cylinder;
+  s.type = type;
   s.radius = radius;
   s.length = length;
   return s;
 }
 
-Shape Shape::sphere(double radius) {
-  Shape s;
-  s.type = ShapeType::Sphere;
-  s.radius = radius;
-  return s;
+Shape Shape::cylinder(double radius, double length) {
+  return roundShape(ShapeType::Cylinder, radius, length);
 }
+
+Shape Shape::sphere(double radius) { return roundShape(ShapeType::Sphere, radius, 0.0); }
 
 Shape Shape::capsule(double radius, double length) {
-  Shape s;
-  s.type = ShapeType::Capsule;
-  s.radius = radius;
-  s.length = length;
-  return s;
+  return roundShape(ShapeType::Capsule, radius, length);
 }
 
 Bounds shapeBounds(const Shape& shape, const Eigen::Quaterniond& orientation) {

@@ -180,27 +180,10 @@ class ShapeCollector {
   }
 
   static void checkSizes(const Shape& shape, const std::string& where) {
-    auto check = [&](double v, const char* what) {
-      if (!std::isfinite(v) || v <= 0.0) {
-        std::ostringstream out;
-        out << where << ": " << shapeTypeName(shape.type) << " " << what
-            << " must be finite and positive, got " << v;
-        throw ConfigError(out.str());
-      }
-    };
-    switch (shape.type) {
-      case ShapeType::Box:
-        check(shape.size.x(), "size x");
-        check(shape.size.y(), "size y");
-        check(shape.size.z(), "size z");
-        break;
-      case ShapeType::Cylinder:
-        check(shape.radius, "radius");
-        check(shape.length, "length");
-        break;
-      default:
-        check(shape.radius, "radius");
-        break;
+    try {
+      validateShape(shape);
+    } catch (const ConfigError& e) {
+      throw ConfigError(where + ": " + e.what());
     }
   }
 

@@ -1,5 +1,6 @@
 #include "placement_samplers/ros/placement_server.hpp"
 
+#include <ros/package.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <chrono>
@@ -8,6 +9,7 @@
 #include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/process/malloc_tuning.hpp"
+#include "placement_samplers/sampling/failure_summary.hpp"
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/ros/conversions.hpp"
 #include "placement_samplers/ros/param_reader.hpp"
@@ -31,6 +33,10 @@ std::shared_ptr<const SceneGenerator> loadGenerator(const ros::NodeHandle& priva
       }
       return text;
     };
+  };
+  // package:// URIs through ROS's own lookup (rospack) rather than the core's stand-in.
+  options.packageResolver = [](const std::string& package) {
+    return ros::package::getPath(package);
   };
   options.urdfParam = textParam("URDF");
   options.mjcfParam = textParam("MJCF");
@@ -189,15 +195,10 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     const SceneConfig& config = generator->config();
     response.frame_id = config.frameId;
     const std::uint32_t count = std::max<std::uint32_t>(request.num_scenes, 1);
-    if (count > config.maxScenesPerRequest) {
-      throw RequestError("num_scenes " + std::to_string(count) +
-                         " exceeds max_scenes_per_request (" +
-                         std::to_string(config.maxScenesPerRequest) + ")");
-    }
     SampleRequest sampleRequest = toSampleRequest(request);
     sampleRequest.maxSeconds = config.maxRequestSeconds;
     PreparedRequest prepared = generator->prepare(sampleRequest);
-    generator->checkAnswerSize(prepared, count);  // refused before any scene is sampled
+    generator->checkRequestSize(prepared, count);  // refused before any scene is sampled
     const std::uint64_t placements = count * generator->placementsPerScene(prepared);
     const std::uint64_t seed = request.seed != 0 ? request.seed : nextSeed();
     response.seed = seed;
@@ -212,26 +213,15 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
       trimAt_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
     }
 
-    response.success = true;
-    std::size_t failed = 0;
+    FailureSummary failures;
     response.scenes.reserve(scenes.size());
     for (const SceneResult& scene : scenes) {
       response.scenes.push_back(toSceneMsg(scene));
-      if (!scene.success) {
-        if (failed == 0) {
-          response.message = count == 1
-                                 ? scene.message
-                                 : "scene " + std::to_string(scene.index) + ": " + scene.message;
-        }
-        ++failed;
-      }
+      failures.add(scene);
     }
-    if (failed > 0) {
-      response.success = false;
-      if (failed > 1) {
-        response.message +=
-            " (" + std::to_string(failed) + " of " + std::to_string(count) + " scenes failed)";
-      }
+    response.success = failures.failed() == 0;
+    if (!response.success) {
+      response.message = failures.message(count);
     } else {
       response.message = joined(prepared.notes);
       if (!request.dry_run) {

@@ -14,7 +14,6 @@
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
 #include "placement_samplers/collision/make_collision_checker.hpp"
-#include "placement_samplers/config/object_config.hpp"
 #include "placement_samplers/text.hpp"
 #include "placement_samplers/geometry/unit_quaternion.hpp"
 #include "sampling/parallel.hpp"
@@ -144,11 +143,6 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
                        " fixtures, more than max_fixtures_per_request (" +
                        std::to_string(config.maxFixturesPerRequest) + ")");
   }
-  try {
-    checkCollisionMode(prepared.collisionCheck, config.collisionMargin);
-  } catch (const ConfigError& e) {
-    throw RequestError(e.what());
-  }
   prepared.fixtures = config.fixtures;
   prepared.fixtures.reserve(config.fixtures.size() + request.fixtures.size());
   // Fixture names seen so far: a set, so that many fixtures cost near-linear time.
@@ -263,6 +257,13 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   return prepared;
 }
 
+void checkSceneRange(std::uint64_t first, std::uint64_t count) {
+  if (count > 0 && count - 1 > std::numeric_limits<std::uint64_t>::max() - first) {
+    throw RequestError("first scene " + std::to_string(first) + " + " + std::to_string(count) +
+                       " scenes: scene indices must stay below 2^64");
+  }
+}
+
 std::uint64_t SceneGenerator::placementsPerScene(const PreparedRequest& request) const {
   return request.sampler->objects().size();
 }
@@ -279,6 +280,16 @@ void SceneGenerator::checkAnswerSize(const PreparedRequest& request,
                        std::to_string(std::max<std::uint64_t>(limit / perScene, 1)) +
                        " scenes per request");
   }
+}
+
+void SceneGenerator::checkRequestSize(const PreparedRequest& request,
+                                      std::uint64_t numScenes) const {
+  if (numScenes > config_->maxScenesPerRequest) {
+    throw RequestError("num_scenes " + std::to_string(numScenes) +
+                       " exceeds max_scenes_per_request (" +
+                       std::to_string(config_->maxScenesPerRequest) + ")");
+  }
+  checkAnswerSize(request, numScenes);
 }
 
 SceneResult SceneGenerator::sampleScene(const PreparedRequest& request, std::uint64_t seed,
@@ -299,10 +310,7 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
                                                           std::uint64_t seed, std::uint64_t first,
                                                           std::uint64_t count,
                                                           unsigned threads) const {
-  if (count > 0 && count - 1 > std::numeric_limits<std::uint64_t>::max() - first) {
-    throw RequestError("first scene " + std::to_string(first) + " + " + std::to_string(count) +
-                       " scenes: scene indices must stay below 2^64");
-  }
+  checkSceneRange(first, count);
   std::vector<SceneResult> results(count);
   if (threads == 0) {
     threads = std::max(1u, std::thread::hardware_concurrency());

@@ -390,15 +390,14 @@ TEST(ConfigBuilder, ObjectShapeErrors) {
 }
 
 TEST(ConfigBuilder, NonPositiveSizes) {
-  EXPECT_EQ(
-      buildError("objects:\n  cube: {shape: box, size: [0.1, 0, 0.1]}\n"),
-      "objects.cube.size: expected three positive extents [x, y, z] in [m], got [0.1, 0, 0.1]");
+  EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [0.1, 0, 0.1]}\n"),
+            "objects.cube.size: box size y must be finite and positive, got 0");
   EXPECT_EQ(buildError("objects:\n  can: {shape: cylinder, radius: -0.1, length: 1}\n"),
-            "objects.can.radius: expected a positive size in [m], got -0.1");
+            "objects.can.radius: cylinder radius must be finite and positive, got -0.1");
   EXPECT_EQ(buildError("objects:\n  pill: {shape: capsule, radius: 0.1, length: 0}\n"),
-            "objects.pill.length: expected a positive size in [m], got 0");
+            "objects.pill.length: capsule length must be finite and positive, got 0");
   EXPECT_EQ(buildError("objects:\n  ball: {shape: sphere, radius: 0}\n"),
-            "objects.ball.radius: expected a positive size in [m], got 0");
+            "objects.ball.radius: sphere radius must be finite and positive, got 0");
   EXPECT_EQ(buildError("objects:\n  ball: {shape: sphere, radius: 1, horizontal_radius: -1}\n"),
             "objects.ball.horizontal_radius: expected a non-negative radius in [m]");
 }
@@ -526,7 +525,8 @@ TEST(ConfigBuilder, TopLevelValueErrors) {
   EXPECT_EQ(buildError("collision_check: exact\n"),
             "collision_check: expected radius, fcl or radius_and_fcl, got 'exact'");
   EXPECT_EQ(buildError("collision_margin: -0.1\n"),
-            "collision_margin: expected a non-negative clearance in [m]");
+            "collision_margin: expected a finite, non-negative clearance in [m] of at most 1e+06, "
+            "got -0.1");
   EXPECT_EQ(buildError("frame_id: \"\"\n"), "frame_id: expected a non-empty frame name");
 }
 

@@ -206,8 +206,8 @@ TEST(FclChecker, CloserThanAPositiveMarginRejected) {
 }
 
 TEST(FclChecker, MarginMustBeFiniteAndNonNegative) {
-  EXPECT_THROW(FclChecker(-0.01), std::invalid_argument);
-  EXPECT_THROW(FclChecker(std::nan("")), std::invalid_argument);
+  EXPECT_THROW(FclChecker(-0.01), ConfigError);
+  EXPECT_THROW(FclChecker(std::nan("")), ConfigError);
   EXPECT_DOUBLE_EQ(FclChecker(0.02).margin(), 0.02);
   EXPECT_THROW(makeCollisionChecker(CollisionMode::Fcl, -1.0), ConfigError);
 }

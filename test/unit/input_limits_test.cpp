@@ -741,6 +741,34 @@ TEST(InputLimits, PlacementsPerAnswerAreLimited) {
                  "1 scenes of 1000 placements each exceed max_placements_per_request (999): ask "
                  "for at most 1 scenes per request");
   }
+  // A service request: scenes per request first, then the answer's size.
+  const SceneGenerator limited(buildFromYaml(yaml + "max_scenes_per_request: 5\n"));
+  const PreparedRequest five = limited.prepare(SampleRequest());
+  EXPECT_NO_THROW(limited.checkRequestSize(five, 5));
+  try {
+    limited.checkRequestSize(five, 6);
+    FAIL() << "accepted";
+  } catch (const RequestError& e) {
+    EXPECT_STREQ(e.what(), "num_scenes 6 exceeds max_scenes_per_request (5)");
+  }
+  try {
+    small.checkRequestSize(one, 1);
+    FAIL() << "accepted";
+  } catch (const RequestError& e) {
+    EXPECT_NE(std::string(e.what()).find("exceed max_placements_per_request (999)"),
+              std::string::npos);
+  }
+  // Scene indices stay below 2^64, for any caller.
+  const std::uint64_t last = std::numeric_limits<std::uint64_t>::max();
+  EXPECT_NO_THROW(checkSceneRange(last, 1));
+  EXPECT_NO_THROW(checkSceneRange(last, 0));
+  try {
+    checkSceneRange(last - 1, 3);
+    FAIL() << "accepted";
+  } catch (const RequestError& e) {
+    EXPECT_STREQ(e.what(),
+                 "first scene 18446744073709551614 + 3 scenes: scene indices must stay below 2^64");
+  }
   // Hidden objects are placements too.
   const SceneGenerator hidden(buildFromYaml(
       "objects:\n  a: {shape: sphere, radius: 0.01}\n  b: {shape: sphere, radius: 0.01}\n"

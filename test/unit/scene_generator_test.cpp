@@ -11,6 +11,7 @@
 
 #include "placement_samplers/collision/radius_checker.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/sampling/failure_summary.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "test_helpers.hpp"
 
@@ -163,7 +164,7 @@ TEST(SceneGenerator, FixtureErrors) {
   ball.shape = Shape::sphere(0.0);
   request.fixtures = {ball};
   EXPECT_EQ(requestError(generator, request),
-            "fixture 'a': radius must be finite and positive, got 0");
+            "fixture 'a': sphere radius must be finite and positive, got 0");
 
   RequestFixture bare;
   bare.name = "a";
@@ -417,6 +418,34 @@ TEST(SceneGenerator, DifferentSeedsDiffer) {
 TEST(SceneGenerator, ZeroScenes) {
   const SceneGenerator generator = makeGenerator();
   EXPECT_TRUE(generator.sampleScenes(generator.prepare(SampleRequest()), 1, 0, 2).empty());
+}
+
+// One line for a batch: the first failure (with its index when there are several scenes) and
+// the count; nothing when all were placed.
+TEST(FailureSummary, FirstFailureAndCount) {
+  auto scene = [](std::uint64_t index, bool success, const std::string& message) {
+    SceneResult r;
+    r.index = index;
+    r.success = success;
+    r.message = message;
+    return r;
+  };
+  FailureSummary none;
+  none.add(scene(0, true, ""));
+  EXPECT_EQ(none.failed(), 0u);
+  EXPECT_EQ(none.message(1), "");
+
+  FailureSummary one;
+  one.add(scene(7, false, "could not place 'a'"));
+  EXPECT_EQ(one.message(1), "could not place 'a'");
+  EXPECT_EQ(one.message(3), "scene 7: could not place 'a'");
+
+  FailureSummary several;
+  several.add(scene(4, true, ""));
+  several.add(scene(5, false, "first"));
+  several.add(scene(6, false, "second"));
+  EXPECT_EQ(several.failed(), 2u);
+  EXPECT_EQ(several.message(10), "scene 5: first (2 of 10 scenes failed)");
 }
 
 }  // namespace

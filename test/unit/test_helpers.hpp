@@ -23,7 +23,7 @@
 #include "placement_samplers/sampling/placement.hpp"
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/sampling/sample_context.hpp"
-#include "placement_samplers/config/scene_config.hpp"
+#include "placement_samplers/sampling/scene_config.hpp"
 
 namespace placement_samplers {
 namespace test {

@@ -40,7 +40,7 @@ class FclChecker : public CollisionChecker {
 
   /// @param margin required clearance between objects [m], finite and non-negative
   /// @param listLimit placed bodies up to which the list is used (0 = always the tree)
-  /// @throw std::invalid_argument when @p margin is negative or not finite
+  /// @throw ConfigError when @p margin breaks checkCollisionMargin()'s rule
   explicit FclChecker(double margin = 0.0, std::size_t listLimit = kDefaultListLimit);
   ~FclChecker() override;
   FclChecker(const FclChecker&) = delete;

@@ -6,13 +6,12 @@
 
 namespace placement_samplers {
 
-/// Checks that makeCollisionChecker() accepts @p mode and @p margin [m], without building a
-/// checker (the builder and request preparation use it).
-/// @throw ConfigError when @p margin is negative or not finite in an exact mode
-void checkCollisionMode(CollisionMode mode, double margin);
+/// The one rule for `collision_margin` [m]: finite, non-negative, at most limits::kCoordinate.
+/// @throw ConfigError saying what was expected (the caller adds where the value came from)
+void checkCollisionMargin(double margin);
 
 /// A checker for @p mode with clearance @p margin [m] in the exact modes.
-/// @throw ConfigError when @p margin is negative or not finite in an exact mode
+/// @throw ConfigError when @p margin breaks checkCollisionMargin()'s rule
 std::unique_ptr<CollisionChecker> makeCollisionChecker(CollisionMode mode, double margin);
 
 }  // namespace placement_samplers

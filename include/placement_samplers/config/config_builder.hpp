@@ -6,7 +6,7 @@
 
 #include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/config/object_config.hpp"
-#include "placement_samplers/config/scene_config.hpp"
+#include "placement_samplers/sampling/scene_config.hpp"
 
 namespace placement_samplers {
 

@@ -50,8 +50,4 @@ Eigen::Vector3d parseBoundedVector(const ConfigNode& node, const char* what);
 /// @throw ConfigError naming @p node otherwise
 Eigen::Quaterniond parseQuaternion(const ConfigNode& node);
 
-/// Checks a primitive's sizes [m]: finite, positive and at most limits::kCoordinate.
-/// @throw ConfigError saying which size is wrong
-void validateShape(const Shape& shape);
-
 }  // namespace placement_samplers

@@ -35,6 +35,11 @@ struct Shape {
   static Shape capsule(double radius, double length);
 };
 
+/// The one rule for a shape's sizes [m]: finite, positive and at most limits::kCoordinate;
+/// a mesh must have vertices. Used for YAML, URDF and MJCF objects and request fixtures.
+/// @throw ConfigError naming the size, e.g. "cylinder radius must be finite and positive, got 0"
+void validateShape(const Shape& shape);
+
 /// robosuite's three numbers for a set of shapes seen from a rotated object frame.
 struct Bounds {
   double bottomZ = 0.0;           ///< lowest z of the geometry relative to the origin [m]

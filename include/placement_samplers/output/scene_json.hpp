@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "placement_samplers/sampling/placement.hpp"
-#include "placement_samplers/config/scene_config.hpp"
+#include "placement_samplers/sampling/scene_config.hpp"
 
 namespace placement_samplers {
 

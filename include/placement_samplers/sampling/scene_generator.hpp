@@ -10,7 +10,7 @@
 
 #include "placement_samplers/sampling/placement.hpp"
 #include "placement_samplers/sampling/placement_sampler.hpp"
-#include "placement_samplers/config/scene_config.hpp"
+#include "placement_samplers/sampling/scene_config.hpp"
 
 namespace placement_samplers {
 
@@ -52,6 +52,10 @@ struct PreparedRequest {
   std::vector<std::string> notes;
 };
 
+/// Scenes @p first .. @p first + @p count - 1 must have indices below 2^64.
+/// @throw RequestError with both numbers otherwise
+void checkSceneRange(std::uint64_t first, std::uint64_t count);
+
 /// Samples scenes from one configuration. Immutable and safe to share between threads.
 class SceneGenerator {
  public:
@@ -77,6 +81,12 @@ class SceneGenerator {
   /// caller may call it first to refuse before doing anything else.
   /// @throw RequestError with the numbers and the largest number of scenes allowed
   void checkAnswerSize(const PreparedRequest& request, std::uint64_t numScenes) const;
+
+  /// The limits of one service request of @p numScenes scenes: at most
+  /// SceneConfig::maxScenesPerRequest scenes, and checkAnswerSize(). The CLI, which streams its
+  /// scenes in blocks, has neither limit.
+  /// @throw RequestError naming the limit and the numbers
+  void checkRequestSize(const PreparedRequest& request, std::uint64_t numScenes) const;
 
   /// Scene @p index of a request seeded with @p seed; the same whatever else is sampled: what
   /// robosuite's samplers give with numpy.random.default_rng([seed, index]) (README).

@@ -1,4 +1,4 @@
-#include "placement_samplers/config/scene_config.hpp"
+#include "placement_samplers/sampling/scene_config.hpp"
 
 namespace placement_samplers {
 
