@@ -592,6 +592,13 @@ void benchStrategies(const Options& options) {
   }
   std::printf("log-log slope of free_space's time per scene over N = 5..60: %.2f\n",
               logLogSlope(ns, times));
+  // strategy dense past the jamming limit: 80 of them.
+  const Setup dense = makeSetup(ps::parseYaml(clutterYaml(80) + "    strategy: dense\n", "dense"));
+  SceneLoop loop(dense.request, ps::makeCollisionChecker(ps::CollisionMode::Radius, 0.0));
+  const double t = nsPerOp(options, [&](std::uint64_t i) { loop.runSeeded(i); });
+  const SceneStats stats = collectStats(loop, options.statScenes);
+  std::printf("dense, N = 80: %.0f ns per scene, failure rate %.4f, sites tried per object %.2f\n",
+              t, stats.failureRate(), stats.attemptsPerObject());
 }
 
 void benchFcl(const Options& options) {

@@ -29,11 +29,13 @@ UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAt
   }
   if (const ConfigNode* n = s.get("strategy")) {
     const std::string& strategy = n->asString();
-    if (strategy != "rejection" && strategy != "free_space") {
-      n->fail("expected rejection or free_space, got " + quoteText(strategy));
+    if (strategy != "rejection" && strategy != "free_space" && strategy != "dense") {
+      n->fail("expected rejection, free_space or dense, got " + quoteText(strategy));
     }
     if (strategy == "free_space") {
       p.strategy = UniformSamplerParams::Strategy::FreeSpace;
+    } else if (strategy == "dense") {
+      p.strategy = UniformSamplerParams::Strategy::Dense;
     }
   }
   if (const ConfigNode* n = s.get("rotation")) {

@@ -159,6 +159,8 @@ void appendUniform(std::string& out, const UniformRandomSampler& sampler) {
   appendInteger(out, p.maxAttempts);
   if (p.strategy == UniformSamplerParams::Strategy::FreeSpace) {
     out += ", \"strategy\": \"free_space\"";
+  } else if (p.strategy == UniformSamplerParams::Strategy::Dense) {
+    out += ", \"strategy\": \"dense\"";
   }
   if (p.region) {
     out += ", \"region\": ";

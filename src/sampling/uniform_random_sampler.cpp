@@ -189,6 +189,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
   if (params_.strategy == UniformSamplerParams::Strategy::FreeSpace) {
     return sampleFreeSpace(context, base, onTop);
   }
+  if (params_.strategy == UniformSamplerParams::Strategy::Dense) {
+    return sampleDense(context, base, onTop);
+  }
   for (const Entry& entry : entries_) {
     if (!placeOne(context, entry, base, onTop)) {
       return false;

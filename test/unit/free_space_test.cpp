@@ -190,7 +190,7 @@ TEST(FreeSpace, FclModesKeepZones) {
 TEST(FreeSpace, UnknownStrategyIsAnError) {
   EXPECT_EQ(test::configError(
                 [] { test::buildFromYaml("samplers:\n  - {name: S, strategy: greedy}\n"); }),
-            "samplers[0].strategy: expected rejection or free_space, got 'greedy'");
+            "samplers[0].strategy: expected rejection, free_space or dense, got 'greedy'");
 }
 
 }  // namespace

@@ -42,8 +42,10 @@ struct UniformSamplerParams {
   std::optional<RegionShape> region;
   std::vector<KeepOutZone> keepOut;  ///< where no placed object may be
   /// rejection: robosuite's blind attempts; free_space: draws only from grid cells not yet
-  /// known to be blocked (the same distribution, uniform over the free positions)
-  enum class Strategy { Rejection, FreeSpace };
+  /// known to be blocked (the same distribution, uniform over the free positions); dense: the
+  /// sites of a randomly shifted and turned hexagonal lattice, in random order (another
+  /// distribution, past the random-packing limit)
+  enum class Strategy { Rejection, FreeSpace, Dense };
   Strategy strategy = Strategy::Rejection;
 };
 
@@ -85,6 +87,8 @@ class UniformRandomSampler : public PlacementSampler {
   /// placeOne() for a region shape or keep-out zones (shaped_placement.cpp).
   bool placeOneShaped(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                       bool onTop) const;
+  /// sample() with strategy dense (dense_placement.cpp).
+  bool sampleDense(SampleContext& context, const Eigen::Vector3d& base, bool onTop) const;
   /// sample() with strategy free_space (free_space_placement.cpp).
   bool sampleFreeSpace(SampleContext& context, const Eigen::Vector3d& base, bool onTop) const;
   /// Records that @p object could not be placed in @p limit attempts; @p outside of them fell
