@@ -21,8 +21,11 @@ PS_PACKAGES=(
   libyaml-cpp-dev catkin-lint
   # ctest clang_format checks the layout of every C++ file with Debian 12's clang-format (14).
   clang-format
-  # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it.
+  # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it;
+  # the .npz writer's CRC-32 is zlib's too.
   zlib1g-dev
+  # /usr/bin/time: test/npz_memory.sh measures the peak memory of a large --output run.
+  time
   # MuJoCo reads MJCF objects; its CMake config needs OpenGL's and qhull's development files
   # without depending on them (a fresh Debian 12 failed at configure).
   libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev

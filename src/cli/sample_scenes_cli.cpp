@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <limits>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <thread>
@@ -13,8 +18,10 @@
 #include "placement_samplers/sampling/failure_summary.hpp"
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
+#include "placement_samplers/output/npz_writer.hpp"
 #include "placement_samplers/output/scene_json.hpp"
 #include "placement_samplers/text.hpp"
+#include "cli/validate_scenes.hpp"
 #include "sampling/parallel.hpp"
 
 namespace placement_samplers {
@@ -23,15 +30,23 @@ namespace {
 constexpr const char* kUsage =
     "usage: sample_scenes --config FILE [--seed S] [--scenes K] [--first-scene N]\n"
     "                     [--sampler NAME] [--collision-check radius|fcl|radius_and_fcl]\n"
-    "                     [--max-attempts N] [--threads T]\n"
+    "                     [--max-attempts N] [--threads T] [--output FILE.npz]\n"
     "       sample_scenes --config FILE --describe\n"
+    "       sample_scenes --config FILE --validate SCENES.jsonl|- [--height-tolerance M]\n"
+    "                     [--sampler NAME] [--collision-check MODE]\n"
     "Samples scenes N .. N+K-1 (default N = 0, K = 1) from the YAML configuration FILE and\n"
     "prints one JSON object per scene and line. S defaults to the configuration's seed (0 =\n"
     "random); scene i of seed S is the same whatever N, K and T are (numpy's\n"
     "default_rng([S, i])), so processes given pieces of N .. N+K-1 together print the scenes\n"
     "of one process. T = 0 (default) uses every core. --describe prints the built\n"
     "configuration as JSON instead (derived radii and offsets, the sampler tree).\n"
-    "Exit status: 0 all scenes placed, 1 some scene failed, 2 usage or configuration error.\n";
+    "--output writes the scenes into FILE.npz (numpy.load reads it: names, position,\n"
+    "orientation, attempts, success, scene, seed) instead of printing them.\n"
+    "--validate reads scenes in this tool's JSON lines (- = stdin) and prints one verdict\n"
+    "per scene and line: each object inside its sampler's region, at its height (within M,\n"
+    "default 0.005 m) and overlapping nothing under the check; exit 0 when all are valid.\n"
+    "Exit status: 0 all scenes placed, 1 some scene failed, 2 usage, configuration or output\n"
+    "error.\n";
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -52,16 +67,26 @@ std::uint64_t parseUnsigned(const std::string& flag, const std::string& text, st
   }
 }
 
+double parseMetres(const std::string& flag, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || v < 0.0) {
+    throw UsageError(flag + ": expected a non-negative number of metres, got " + quoteText(text));
+  }
+  return v;
+}
+
 /// Scenes per block: the output is written block by block, so memory stays bounded for any K.
 constexpr std::uint64_t kBlock = 8192;
 /// Placements per block, at most (unless one scene has more): about 70 MB of results and text.
 constexpr std::uint64_t kBlockPlacements = 1 << 20;
 
 /// Samples and prints scenes firstScene .. firstScene + count - 1 in blocks; formatting is spread
-/// over the threads too, since printing a scene costs more than sampling it. @return what failed
+/// over the threads too, since printing a scene costs more than sampling it; with @p npz, the
+/// scenes go there instead. @return what failed
 FailureSummary writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
                            std::uint64_t seed, std::uint64_t firstScene, std::uint64_t count,
-                           unsigned threads, std::ostream& out) {
+                           unsigned threads, std::ostream& out, NpzWriter* npz) {
   const unsigned workers =
       threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::string> texts(workers);
@@ -72,6 +97,13 @@ FailureSummary writeScenes(const SceneGenerator& generator, const PreparedReques
     const std::uint64_t n = std::min(block, count - first);
     const std::vector<SceneResult> results =
         generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads);
+    for (const SceneResult& scene : results) {
+      failures.add(scene);
+    }
+    if (npz != nullptr) {
+      npz->write(results);
+      continue;
+    }
     const std::size_t slices = static_cast<std::size_t>(std::min<std::uint64_t>(workers, n));
     auto format = [&](std::size_t slice) {
       // A string of this thread's own (texts' buffers are kept): neighbouring std::string
@@ -94,9 +126,9 @@ FailureSummary writeScenes(const SceneGenerator& generator, const PreparedReques
     for (std::size_t slice = 0; slice < slices; ++slice) {
       out.write(texts[slice].data(), static_cast<std::streamsize>(texts[slice].size()));
     }
-    for (const SceneResult& scene : results) {
-      failures.add(scene);
-    }
+  }
+  if (npz != nullptr) {
+    npz->finish();
   }
   out.flush();
   return failures;
@@ -115,6 +147,9 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
   std::uint32_t maxAttempts = 0;
   unsigned threads = 0;
   bool describe = false;
+  std::string outputPath;
+  std::string validatePath;
+  double heightTolerance = ValidationOptions().heightTolerance;
   try {
     for (std::size_t i = 0; i < args.size(); ++i) {
       const std::string& flag = args[i];
@@ -130,7 +165,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
         throw UsageError(flag == "--config" || flag == "--seed" || flag == "--scenes" ||
                                  flag == "--first-scene" || flag == "--sampler" ||
                                  flag == "--collision-check" || flag == "--max-attempts" ||
-                                 flag == "--threads"
+                                 flag == "--threads" || flag == "--output" ||
+                                 flag == "--validate" || flag == "--height-tolerance"
                              ? flag + ": missing value"
                              : "unknown argument " + quoteText(flag));
       }
@@ -151,6 +187,12 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       } else if (flag == "--max-attempts") {
         maxAttempts = static_cast<std::uint32_t>(
             parseUnsigned(flag, value, std::numeric_limits<std::uint32_t>::max()));
+      } else if (flag == "--validate") {
+        validatePath = value;
+      } else if (flag == "--height-tolerance") {
+        heightTolerance = parseMetres(flag, value);
+      } else if (flag == "--output") {
+        outputPath = value;
       } else if (flag == "--threads") {
         threads = static_cast<unsigned>(parseUnsigned(flag, value, 1024));
       } else {
@@ -159,6 +201,11 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     }
     if (configPath.empty()) {
       throw UsageError("--config FILE is required");
+    }
+    if (!outputPath.empty() &&
+        (outputPath.size() < 5 || outputPath.compare(outputPath.size() - 4, 4, ".npz") != 0)) {
+      throw UsageError("--output: expected a file name ending in .npz, got " +
+                       quoteText(outputPath));
     }
   } catch (const UsageError& e) {
     err << "sample_scenes: " << e.what() << "\n" << kUsage;
@@ -208,14 +255,38 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     if (seed == 0) {
       seed = randomSeed();  // a fresh seed, printed with every scene
     }
+    if (!validatePath.empty()) {
+      ValidationOptions validation;
+      validation.heightTolerance = heightTolerance;
+      if (validatePath == "-") {
+        return validateSceneLines(generator, prepared, validation, std::cin, validatePath, out,
+                                  err);
+      }
+      std::ifstream in(validatePath);
+      if (!in) {
+        err << "sample_scenes: --validate " << escapeText(validatePath) << ": cannot open\n";
+        return 2;
+      }
+      return validateSceneLines(generator, prepared, validation, in, validatePath, out, err);
+    }
     checkSceneRange(firstScene, scenes);  // before the first block is written
+    std::unique_ptr<NpzWriter> npz;
+    if (!outputPath.empty()) {
+      std::vector<std::string> names;
+      for (const ObjectPtr& object : prepared.sampler->objects()) {
+        names.push_back(object->name);
+      }
+      npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed);
+    }
     const FailureSummary failures =
-        writeScenes(generator, prepared, seed, firstScene, scenes, threads, out);
+        writeScenes(generator, prepared, seed, firstScene, scenes, threads, out, npz.get());
     if (failures.failed() != 0) {
       err << "sample_scenes: " << failures.message(scenes) << "\n";
       return 1;
     }
     return 0;
+  } catch (const OutputError& e) {
+    err << "sample_scenes: " << e.what() << "\n";
   } catch (const ConfigError& e) {
     err << "sample_scenes: " << shownPath << ": " << e.what() << "\n";
   } catch (const RequestError& e) {

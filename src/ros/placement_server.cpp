@@ -14,6 +14,7 @@
 #include "placement_samplers/ros/conversions.hpp"
 #include "placement_samplers/ros/param_reader.hpp"
 #include "placement_samplers/ros/scene_markers.hpp"
+#include "placement_samplers/ros/validation_service.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {
@@ -121,6 +122,7 @@ void PlacementServer::advertise() {
   std::lock_guard<std::mutex> lock(publishMutex_);
   // Dropping the old handles first unregisters them, so the new ones register afresh.
   sampleService_.shutdown();
+  validateService_.shutdown();
   reloadService_.shutdown();
   pingService_.shutdown();
   markerPublisher_.shutdown();
@@ -134,6 +136,8 @@ void PlacementServer::advertise() {
   scenePublisher_ = privateHandle_.advertise<PlacedScene>("scene", 1, true);
   sampleService_ =
       privateHandle_.advertiseService("sample_placements", &PlacementServer::sample, this);
+  validateService_ =
+      privateHandle_.advertiseService("validate_placements", &PlacementServer::validate, this);
   reloadService_ = lightHandle_.advertiseService("reload", &PlacementServer::reload, this);
   pingService_ = lightHandle_.advertiseService("ping", &PlacementServer::ping, this);
   // Latched topics carry the current scene to whoever subscribes after a master restart.
@@ -238,6 +242,12 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     response.message = e.what();
     response.scenes.clear();
   }
+  return true;
+}
+
+bool PlacementServer::validate(ValidatePlacements::Request& request,
+                               ValidatePlacements::Response& response) {
+  ros_interface::answerValidation(*generator(), request, response);  // never throws
   return true;
 }
 

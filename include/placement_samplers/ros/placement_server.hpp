@@ -20,6 +20,7 @@
 
 #include "placement_samplers/PlacedScene.h"
 #include "placement_samplers/SamplePlacements.h"
+#include "placement_samplers/ValidatePlacements.h"
 #include "placement_samplers/sampling/scene_generator.hpp"
 
 namespace placement_samplers {
@@ -49,6 +50,8 @@ class PlacementServer {
   unsigned threads() const { return threads_; }
 
   bool sample(SamplePlacements::Request& request, SamplePlacements::Response& response);
+  /// ~validate_placements: the verdict on given poses (validation_service.hpp).
+  bool validate(ValidatePlacements::Request& request, ValidatePlacements::Response& response);
   bool reload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   /// Does nothing: a baseline for measuring the cost of a service call.
   bool ping(std_srvs::Empty::Request&, std_srvs::Empty::Response&) { return true; }
@@ -92,6 +95,7 @@ class PlacementServer {
   // Guarded by publishMutex_: the handles and what the current scene shows.
   std::mutex publishMutex_;
   ros::ServiceServer sampleService_;
+  ros::ServiceServer validateService_;
   ros::ServiceServer reloadService_;
   ros::ServiceServer pingService_;
   ros::Publisher markerPublisher_;

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "placement_samplers/sampling/scene_generator.hpp"
+
+namespace placement_samplers {
+
+/// A pose to validate: one object of the configuration.
+struct GivenPose {
+  std::string name;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< object origin [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
+/// One reason why an object's pose is not one the configuration allows.
+struct Violation {
+  enum class Kind {
+    OutsideRegion,     ///< outside its sampler's region by @ref distance
+    Overlap,           ///< overlaps @ref other under the check @ref check
+    Height,            ///< its z is off the sampler's by @ref distance
+    Unknown,           ///< not an object of the sampler validated against
+    Missing,           ///< an object of the sampler that was not given
+    Duplicate,         ///< given more than once (the first is validated)
+    ReferenceMissing,  ///< its sampler's reference (@ref other) is not in the scene
+    BadPose,           ///< a coordinate is not finite or too large, or the quaternion is zero
+  };
+  Kind kind = Kind::Unknown;
+  /// The object's sampler ("" for Unknown, Duplicate, BadPose).
+  std::string sampler;
+  std::string other;      ///< Overlap: the object or fixture; ReferenceMissing: the reference
+  std::string check;      ///< Overlap: "radius", "fcl" or "radius_and_fcl"
+  double distance = 0.0;  ///< OutsideRegion, Height: by how much [m]
+  std::string message;    ///< the whole sentence
+};
+
+/// The verdict on one object.
+struct ObjectVerdict {
+  std::string name;
+  bool valid = true;
+  std::vector<Violation> reasons;  ///< every reason it is not valid
+};
+
+/// The verdict on a scene: every object of the sampler (in sampling order), then the unknown
+/// and duplicate names given.
+struct SceneVerdict {
+  bool valid = true;
+  std::vector<ObjectVerdict> objects;
+};
+
+/// Tolerances of a validation.
+struct ValidationOptions {
+  /// How far an object's z may be from the height its sampler gives [m].
+  double heightTolerance = 0.005;
+  /// How far outside its region an object may be [m]: covers the rounding of sampling's
+  /// x = u + reference (read back as x - reference).
+  double regionTolerance = 1e-9;
+};
+
+/// Whether @p poses form a scene that @p request (its sampler, fixtures, collision check) of
+/// @p generator could sample: each object inside its uniform sampler's x-y region around the
+/// resolved reference (after the boundary shrink), at the sampler's height within the
+/// tolerance, and, when its sampler checks placements, overlapping no fixture and no object
+/// placed before it in sampling order under the request's check. Named references resolve
+/// against the fixtures and the given poses, as in sampling. Orientations are not checked.
+/// @throw RequestError when a tolerance is negative or not finite
+SceneVerdict validateScene(const SceneGenerator& generator, const PreparedRequest& request,
+                           const std::vector<GivenPose>& poses,
+                           const ValidationOptions& options = {});
+
+/// The kind's name in outputs: "outside_region", "overlap", "height", "unknown_object",
+/// "missing_object", "duplicate", "reference_missing" or "bad_pose".
+const char* violationKindName(Violation::Kind kind);
+
+/// "radius", "fcl" or "radius_and_fcl".
+const char* collisionModeName(CollisionMode mode);
+
+}  // namespace placement_samplers

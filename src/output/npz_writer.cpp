@@ -1,0 +1,253 @@
+#include "placement_samplers/output/npz_writer.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+
+#include "output/npz_format.hpp"
+#include "placement_samplers/text.hpp"
+
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
+              "the .npz arrays are declared little-endian and copied as they are in memory");
+
+namespace placement_samplers {
+namespace {
+
+// The members, in the file's order.
+enum Member { kNames, kPosition, kOrientation, kAttempts, kSuccess, kScene, kSeed, kMembers };
+constexpr const char* kMemberNames[kMembers] = {"names.npy",    "position.npy", "orientation.npy",
+                                                "attempts.npy", "success.npy",  "scene.npy",
+                                                "seed.npy"};
+
+}  // namespace
+
+struct NpzWriter::Impl {
+  std::string path;
+  std::string shownPath;
+  int fd = -1;
+  bool regular = false;  // a regular file: removed when not finished (never a device or FIFO)
+  bool finished = false;
+  bool zip64 = false;
+  std::uint64_t numScenes = 0;
+  std::uint64_t rows = 0;  // scenes written so far
+  std::vector<std::string> names;
+  std::unordered_map<std::string, std::size_t> columns;
+  std::vector<npz::ZipMember> members;
+  std::uint64_t arrayOffset[kMembers] = {};  // where each member's array starts (after .npy header)
+  std::uint64_t directoryOffset = 0;
+  std::uint64_t fileSize = 0;
+  // One block's rows per member, kept between calls so that their memory is reused.
+  std::vector<double> position;
+  std::vector<double> orientation;
+  std::vector<std::uint32_t> attempts;
+  std::vector<std::uint8_t> success;
+  std::vector<std::uint64_t> scene;
+
+  // Also when the constructor throws: the file is closed and a partial one removed.
+  ~Impl() {
+    if (fd >= 0) {
+      ::close(fd);
+    }
+    if (!finished && regular) {
+      ::unlink(path.c_str());
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& what, int error) const {
+    throw OutputError(shownPath + ": " + what + ": " + std::strerror(error));
+  }
+
+  /// Writes @p size bytes at @p offset, whatever pieces the system takes at a time.
+  void writeAt(const void* data, std::size_t size, std::uint64_t offset) const {
+    const char* p = static_cast<const char*>(data);
+    while (size > 0) {
+      const ssize_t done = ::pwrite(fd, p, size, static_cast<off_t>(offset));
+      if (done < 0) {
+        if (errno == EINTR) {
+          continue;
+        }
+        fail("cannot write", errno);
+      }
+      if (done == 0) {
+        fail("cannot write", ENOSPC);
+      }
+      p += done;
+      size -= static_cast<std::size_t>(done);
+      offset += static_cast<std::uint64_t>(done);
+    }
+  }
+
+  /// Appends @p size bytes to member @p m at row offset @p offset, updating its CRC.
+  void append(Member m, const void* data, std::size_t size, std::uint64_t offset) {
+    writeAt(data, size, arrayOffset[m] + offset);
+    members[m].crc =
+        static_cast<std::uint32_t>(crc32_z(members[m].crc, static_cast<const Bytef*>(data), size));
+  }
+
+  std::size_t column(const ObjectPlacement& p, std::size_t i) const {
+    // Placements come in sampling order, the order of names: a lookup only if not.
+    if (i < names.size() && names[i] == p.name) {
+      return i;
+    }
+    const auto found = columns.find(p.name);
+    if (found == columns.end()) {
+      throw std::invalid_argument("NpzWriter: scene places " + quoteText(p.name) +
+                                  ", which is not among the names given");
+    }
+    return found->second;
+  }
+};
+
+NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& names,
+                     std::uint64_t numScenes, std::uint64_t seed, const NpzOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
+  d.path = path;
+  d.shownPath = escapeText(path);
+  d.numScenes = numScenes;
+  d.names = names;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    d.columns.emplace(names[i], i);
+  }
+  const std::uint64_t n = names.size();
+
+  // names: numpy unicode (UTF-32) when every name is UTF-8, else bytes.
+  std::vector<std::vector<std::uint32_t>> decoded(names.size());
+  bool unicode = true;
+  std::size_t width = 1;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    unicode = unicode && npz::decodeUtf8(names[i], decoded[i]);
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    width = std::max(width, unicode ? decoded[i].size() : names[i].size());
+  }
+  std::string namesData(n * width * (unicode ? 4 : 1), '\0');
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (unicode) {
+      std::memcpy(&namesData[i * width * 4], decoded[i].data(), decoded[i].size() * 4);
+    } else {
+      std::memcpy(&namesData[i * width], names[i].data(), names[i].size());
+    }
+  }
+
+  std::string headers[kMembers];
+  std::uint64_t payload[kMembers];
+  headers[kNames] = npz::npyHeader((unicode ? "<U" : "|S") + std::to_string(width), {n});
+  payload[kNames] = namesData.size();
+  headers[kPosition] = npz::npyHeader("<f8", {numScenes, n, 3});
+  payload[kPosition] = numScenes * n * 3 * sizeof(double);
+  headers[kOrientation] = npz::npyHeader("<f8", {numScenes, n, 4});
+  payload[kOrientation] = numScenes * n * 4 * sizeof(double);
+  headers[kAttempts] = npz::npyHeader("<u4", {numScenes, n});
+  payload[kAttempts] = numScenes * n * sizeof(std::uint32_t);
+  headers[kSuccess] = npz::npyHeader("|b1", {numScenes});
+  payload[kSuccess] = numScenes;
+  headers[kScene] = npz::npyHeader("<u8", {numScenes});
+  payload[kScene] = numScenes * sizeof(std::uint64_t);
+  headers[kSeed] = npz::npyHeader("<u8", {});
+  payload[kSeed] = sizeof(std::uint64_t);
+
+  d.members.resize(kMembers);
+  for (int m = 0; m < kMembers; ++m) {
+    d.members[m].name = kMemberNames[m];
+    d.members[m].size = headers[m].size() + payload[m];
+  }
+  d.zip64 = options.forceZip64 || npz::needsZip64(d.members);
+  d.directoryOffset = npz::layOut(d.members, d.zip64);
+  d.fileSize =
+      d.directoryOffset + npz::centralDirectory(d.members, d.directoryOffset, d.zip64).size();
+
+  d.fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (d.fd < 0) {
+    d.fail("cannot create", errno);
+  }
+  struct stat status {};
+  d.regular = ::fstat(d.fd, &status) == 0 && S_ISREG(status.st_mode);
+  // Reserve the whole file now: a full disk shows at once, not after hours of sampling.
+  if (::posix_fallocate(d.fd, 0, static_cast<off_t>(d.fileSize)) == ENOSPC) {
+    throw OutputError(d.shownPath + ": not enough disk space for " + std::to_string(d.fileSize) +
+                      " bytes: " + std::strerror(ENOSPC));
+  }
+  for (int m = 0; m < kMembers; ++m) {
+    const std::string local = npz::localHeader(d.members[m], d.zip64);
+    d.writeAt(local.data(), local.size(), d.members[m].headerOffset);
+    d.arrayOffset[m] = d.members[m].dataOffset + headers[m].size();
+    d.members[m].crc = 0;
+    d.append(static_cast<Member>(m), headers[m].data(), headers[m].size(),
+             d.members[m].dataOffset - d.arrayOffset[m]);
+  }
+  d.append(kNames, namesData.data(), namesData.size(), 0);
+  d.append(kSeed, &seed, sizeof(seed), 0);
+}
+
+NpzWriter::~NpzWriter() = default;
+
+void NpzWriter::write(const std::vector<SceneResult>& scenes) {
+  Impl& d = *impl_;
+  const std::size_t k = scenes.size();
+  if (k > d.numScenes - d.rows) {
+    throw OutputError(d.shownPath + ": " + std::to_string(d.rows + k) +
+                      " scenes written into a file laid out for " + std::to_string(d.numScenes));
+  }
+  const std::size_t n = d.names.size();
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  d.position.assign(k * n * 3, kNan);
+  d.orientation.assign(k * n * 4, kNan);
+  d.attempts.assign(k * n, 0);
+  d.success.resize(k);
+  d.scene.resize(k);
+  for (std::size_t s = 0; s < k; ++s) {
+    const SceneResult& result = scenes[s];
+    d.success[s] = result.success ? 1 : 0;
+    d.scene[s] = result.index;
+    for (std::size_t i = 0; i < result.placements.size(); ++i) {
+      const ObjectPlacement& p = result.placements[i];
+      const std::size_t c = s * n + d.column(p, i);
+      std::memcpy(&d.position[c * 3], p.position.data(), 3 * sizeof(double));
+      std::memcpy(&d.orientation[c * 4], p.orientation.coeffs().data(), 4 * sizeof(double));
+      d.attempts[c] = p.attempts;
+    }
+  }
+  const std::uint64_t row = d.rows;
+  d.append(kPosition, d.position.data(), d.position.size() * sizeof(double),
+           row * n * 3 * sizeof(double));
+  d.append(kOrientation, d.orientation.data(), d.orientation.size() * sizeof(double),
+           row * n * 4 * sizeof(double));
+  d.append(kAttempts, d.attempts.data(), d.attempts.size() * sizeof(std::uint32_t),
+           row * n * sizeof(std::uint32_t));
+  d.append(kSuccess, d.success.data(), k, row);
+  d.append(kScene, d.scene.data(), k * sizeof(std::uint64_t), row * sizeof(std::uint64_t));
+  d.rows += k;
+}
+
+void NpzWriter::finish() {
+  Impl& d = *impl_;
+  if (d.rows != d.numScenes) {
+    throw OutputError(d.shownPath + ": " + std::to_string(d.rows) + " of " +
+                      std::to_string(d.numScenes) + " scenes written");
+  }
+  for (const npz::ZipMember& m : d.members) {
+    const std::uint32_t crc = m.crc;  // little-endian, as the field
+    d.writeAt(&crc, sizeof(crc), m.headerOffset + npz::kLocalCrcOffset);
+  }
+  const std::string directory = npz::centralDirectory(d.members, d.directoryOffset, d.zip64);
+  d.writeAt(directory.data(), directory.size(), d.directoryOffset);
+  const int fd = d.fd;
+  d.fd = -1;
+  // close() reports what the file system could not store (NFS, quotas).
+  if (::close(fd) != 0) {
+    d.fail("cannot write", errno);
+  }
+  d.finished = true;
+}
+
+std::uint64_t NpzWriter::fileSize() const { return impl_->fileSize; }
+
+}  // namespace placement_samplers

@@ -1,0 +1,252 @@
+#include "placement_samplers/validation/scene_validator.hpp"
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <unordered_map>
+
+#include "placement_samplers/collision/make_collision_checker.hpp"
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
+#include "placement_samplers/sampling/sample_context.hpp"
+#include "placement_samplers/sampling/sequential_composite_sampler.hpp"
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "placement_samplers/text.hpp"
+#include "placement_samplers/validation/region_test.hpp"
+
+namespace placement_samplers {
+namespace {
+
+std::string metres(double v) {
+  std::ostringstream out;
+  out << v << " m";
+  return out.str();
+}
+
+/// Replays the sampler tree over the given poses: the same fixtures, references, heights and
+/// collision tests as sampling, each pose taking the place of the accepted candidate.
+class Validator {
+ public:
+  Validator(const SceneGenerator& generator, const PreparedRequest& request,
+            const ValidationOptions& options)
+      : request_(request),
+        options_(options),
+        checker_(makeCollisionChecker(request.collisionCheck, generator.config().collisionMargin)),
+        pairChecker_(
+            makeCollisionChecker(request.collisionCheck, generator.config().collisionMargin)),
+        context_(engine_, *checker_) {}
+
+  SceneVerdict run(const std::vector<GivenPose>& poses) {
+    SceneVerdict verdict;
+    // The sampler's objects first, in sampling order; then what does not belong.
+    for (const ObjectPtr& object : request_.sampler->objects()) {
+      slots_.emplace(object->name, verdict.objects.size());
+      verdict.objects.push_back(ObjectVerdict{object->name, true, {}});
+    }
+    for (const GivenPose& pose : poses) {
+      const auto slot = slots_.find(pose.name);
+      if (slot == slots_.end()) {
+        ObjectVerdict unknown{pose.name, false, {}};
+        add(unknown, Violation::Kind::Unknown, "", "", 0.0,
+            "object " + quoteText(pose.name) + " is not placed by sampler " +
+                quoteText(request_.sampler->name()));
+        verdict.objects.push_back(std::move(unknown));
+        continue;
+      }
+      if (!given_.emplace(pose.name, &pose).second) {
+        add(verdict.objects[slot->second], Violation::Kind::Duplicate, "", "", 0.0,
+            "object " + quoteText(pose.name) + " is given more than once: the first pose counts");
+      }
+    }
+    objects_ = &verdict.objects;
+    for (const FixtureSpec& f : request_.fixtures) {
+      context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
+    }
+    visit(*request_.sampler, request_.reference, request_.onTop);
+    for (const ObjectVerdict& o : verdict.objects) {
+      verdict.valid = verdict.valid && o.valid;
+    }
+    return verdict;
+  }
+
+ private:
+  static void add(ObjectVerdict& verdict, Violation::Kind kind, const std::string& sampler,
+                  const std::string& other, double distance, std::string message) {
+    Violation v;
+    v.kind = kind;
+    v.sampler = sampler;
+    v.other = other;
+    v.distance = distance;
+    v.message = std::move(message);
+    verdict.valid = false;
+    verdict.reasons.push_back(std::move(v));
+  }
+
+  void visit(const PlacementSampler& sampler, const Reference& reference, bool onTop) {
+    if (const auto* composite = dynamic_cast<const SequentialCompositeSampler*>(&sampler)) {
+      for (const SequentialCompositeSampler::Child& child : composite->children()) {
+        visit(*child.sampler, child.args.reference ? *child.args.reference : reference,
+              child.args.onTop ? *child.args.onTop : onTop);
+      }
+      return;
+    }
+    const auto& uniform = dynamic_cast<const UniformRandomSampler&>(sampler);
+    // The base as UniformRandomSampler::sample() resolves it.
+    const UniformSamplerParams& params = uniform.params();
+    Eigen::Vector3d base = params.referencePos;
+    bool haveBase = true;
+    if (reference.kind == Reference::Kind::Point) {
+      base = reference.point;
+    } else if (reference.kind == Reference::Kind::Name) {
+      const PlacedEntry* ref = context_.find(reference.name);
+      haveBase = ref != nullptr;
+      if (ref != nullptr) {
+        base = ref->position;
+        base.z() += onTop ? ref->object->topOffset.z() : 0.0;
+      }
+    }
+    for (const ObjectPtr& object : uniform.objects()) {
+      check(uniform, *object, haveBase ? &base : nullptr, reference, onTop);
+    }
+  }
+
+  void check(const UniformRandomSampler& sampler, const ObjectModel& object,
+             const Eigen::Vector3d* base, const Reference& reference, bool onTop) {
+    ObjectVerdict& verdict = (*objects_)[slots_.at(object.name)];
+    const std::string& s = sampler.name();
+    const auto given = given_.find(object.name);
+    if (given == given_.end()) {
+      add(verdict, Violation::Kind::Missing, s, "", 0.0,
+          "object " + quoteText(object.name) + " of sampler " + quoteText(s) + " is missing");
+      return;
+    }
+    const GivenPose& pose = *given->second;
+    const double norm = pose.orientation.coeffs().norm();
+    const bool bounded =
+        pose.position.allFinite() && (pose.position.array().abs() <= limits::kCoordinate).all();
+    if (!bounded || !std::isfinite(norm) || norm < 1e-6) {
+      add(verdict, Violation::Kind::BadPose, "", "", 0.0,
+          "object " + quoteText(object.name) + ": " +
+              (!bounded ? "the position must be finite and within +-" + metres(limits::kCoordinate)
+                        : std::string("the orientation must be a finite non-zero quaternion")));
+      return;
+    }
+    Candidate candidate;
+    candidate.object = &object;
+    candidate.position = pose.position;
+    // Normalised only when it is not a unit quaternion already: a sampled pose is tested with
+    // the very bits it was sampled with.
+    candidate.orientation = std::abs(norm - 1.0) > 1e-12
+                                ? Eigen::Quaterniond(pose.orientation.coeffs() / norm)
+                                : pose.orientation;
+    const UniformSamplerParams& params = sampler.params();
+    if (base == nullptr) {
+      add(verdict, Violation::Kind::ReferenceMissing, s, reference.name, 0.0,
+          "object " + quoteText(object.name) + ": reference " + quoteText(reference.name) +
+              " of sampler " + quoteText(s) +
+              " is neither a fixture nor an object placed before it");
+    } else {
+      const double outside = distanceOutsideRegion(sampler, object, *base, pose.position);
+      if (outside > options_.regionTolerance) {
+        add(verdict, Violation::Kind::OutsideRegion, s, "", outside,
+            "object " + quoteText(object.name) + " is outside the region of sampler " +
+                quoteText(s) + " by " + metres(outside));
+      }
+      const double z = params.zOffset + base->z() - (onTop ? object.bottomOffset.z() : 0.0);
+      const double off = std::abs(pose.position.z() - z);
+      if (!(off <= options_.heightTolerance)) {
+        add(verdict, Violation::Kind::Height, s, "", off,
+            "object " + quoteText(object.name) + " is at z " + metres(pose.position.z()) +
+                ", off the height of sampler " + quoteText(s) + " (" + metres(z) + ") by " +
+                metres(off));
+      }
+    }
+    if (params.ensureValidPlacement &&
+        context_.firstCollision(candidate) != CollisionChecker::kNone) {
+      overlaps(verdict, candidate, object.name, s);
+    }
+    context_.addPlacement(s, candidate, 1, params.hides);
+  }
+
+  /// Every fixture and earlier object that @p candidate overlaps, one test each.
+  void overlaps(ObjectVerdict& verdict, const Candidate& candidate, const std::string& name,
+                const std::string& sampler) {
+    const char* mode = collisionModeName(request_.collisionCheck);
+    std::vector<PlacedEntry> one(1);
+    for (const PlacedEntry& entry : context_.entries()) {
+      one[0] = entry;
+      pairChecker_->clear();
+      pairChecker_->added(one, 0);
+      if (pairChecker_->firstCollision(one, candidate) == CollisionChecker::kNone) {
+        continue;
+      }
+      add(verdict, Violation::Kind::Overlap, sampler, std::string(entry.name), 0.0,
+          "object " + quoteText(name) + " overlaps " + (entry.fixture ? "fixture " : "object ") +
+              quoteText(entry.name) + " under the " + mode + " check");
+      verdict.reasons.back().check = mode;
+    }
+  }
+
+  const PreparedRequest& request_;
+  ValidationOptions options_;
+  Engine engine_;  // SampleContext wants one; validation draws nothing
+  std::unique_ptr<CollisionChecker> checker_;
+  std::unique_ptr<CollisionChecker> pairChecker_;
+  SampleContext context_;
+  std::unordered_map<std::string, std::size_t> slots_;
+  std::unordered_map<std::string, const GivenPose*> given_;
+  std::vector<ObjectVerdict>* objects_ = nullptr;
+};
+
+}  // namespace
+
+const char* violationKindName(Violation::Kind kind) {
+  switch (kind) {
+    case Violation::Kind::OutsideRegion:
+      return "outside_region";
+    case Violation::Kind::Overlap:
+      return "overlap";
+    case Violation::Kind::Height:
+      return "height";
+    case Violation::Kind::Unknown:
+      return "unknown_object";
+    case Violation::Kind::Missing:
+      return "missing_object";
+    case Violation::Kind::Duplicate:
+      return "duplicate";
+    case Violation::Kind::ReferenceMissing:
+      return "reference_missing";
+    case Violation::Kind::BadPose:
+      return "bad_pose";
+  }
+  return "unknown_object";
+}
+
+const char* collisionModeName(CollisionMode mode) {
+  switch (mode) {
+    case CollisionMode::Radius:
+      return "radius";
+    case CollisionMode::Fcl:
+      return "fcl";
+    case CollisionMode::RadiusAndFcl:
+      return "radius_and_fcl";
+  }
+  return "radius";
+}
+
+SceneVerdict validateScene(const SceneGenerator& generator, const PreparedRequest& request,
+                           const std::vector<GivenPose>& poses, const ValidationOptions& options) {
+  if (!std::isfinite(options.heightTolerance) || options.heightTolerance < 0.0) {
+    std::ostringstream out;
+    out << "height_tolerance: expected a finite non-negative number of metres, got "
+        << options.heightTolerance;
+    throw RequestError(out.str());
+  }
+  if (!std::isfinite(options.regionTolerance) || options.regionTolerance < 0.0) {
+    throw RequestError("region tolerance: expected a finite non-negative number of metres");
+  }
+  Validator validator(generator, request, options);
+  return validator.run(poses);
+}
+
+}  // namespace placement_samplers
