@@ -10,6 +10,7 @@
 #include "placement_samplers/sampling/sampler_regions.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "placement_samplers/validation/region_test.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {
@@ -215,6 +216,29 @@ samplers:
   EXPECT_TRUE(regions[1].keepOut);
   EXPECT_EQ(regions[1].triangles.size(), 3u * 48u);
   EXPECT_EQ(regions[1].triangles[0], Eigen::Vector3d(1, 2, 0.81));  // world: not moved
+}
+
+/// The validator's region test knows the shapes and the zones.
+TEST(RegionSampler, ValidatorSeesShapesAndZones) {
+  UniformSamplerParams p;
+  p.region = RegionShape::disk(Eigen::Vector2d(0, 0), 0.3);
+  p.keepOut.push_back({RegionShape::disk(Eigen::Vector2d(0.1, 0), 0.05), false});
+  // A strip in the world frame, just left of the region (whose world x spans 0.7 .. 1.3).
+  p.keepOut.push_back(
+      {RegionShape::rectangle(Eigen::Vector2d(0.7, 0.75), Eigen::Vector2d(0.7, 1.3)), true});
+  const auto cube = test::makeBox("cube", Eigen::Vector3d(0.06, 0.08, 0.1));  // radius 0.05
+  const UniformRandomSampler sampler("S", p, {cube});
+  const Eigen::Vector3d base(1, 1, 0.8);
+  const auto outside = [&](double x, double y) {
+    return distanceOutsideRegion(sampler, *cube, base, Eigen::Vector3d(x, y, 0.9));
+  };
+  EXPECT_EQ(outside(0.9, 1.0), 0.0);
+  EXPECT_NEAR(outside(1.0, 1.25), 0.0, 1e-12);   // on the inset's edge
+  EXPECT_NEAR(outside(1.0, 1.3), 0.05, 1e-12);   // on the region's edge
+  EXPECT_NEAR(outside(1.15, 1.0), 0.05, 1e-12);  // its disk reaches 0.05 into the zone
+  EXPECT_NEAR(outside(1.1, 1.0), 0.1, 1e-12);    // its centre in the zone
+  EXPECT_NEAR(outside(0.8, 1.0), 0.0, 1e-12);    // touching the world strip
+  EXPECT_NEAR(outside(0.78, 1.0), 0.02, 1e-12);  // 0.02 into it
 }
 
 }  // namespace
