@@ -560,6 +560,48 @@ void benchClutter(const Options& options) {
       logLogSlope(ns, seeded), logLogSlope(ns, reused), logLogSlope(ns, attempts));
 }
 
+/// Strategies rejection and free_space (issue 16) on the clutter scene, N = 5..60: time per
+/// scene with its seeding, failures over statScenes seeded scenes.
+void benchStrategies(const Options& options) {
+  const int points[] = {5, 10, 20, 30, 40, 50, 60};
+  std::printf(
+      "\nStrategies: clutter (N cylinders r=0.03 in 0.6 x 0.6 m, boundary in range), one thread, "
+      "median of %d;\nfailures and attempts over %llu seeded scenes\n",
+      options.repetitions, static_cast<unsigned long long>(options.statScenes));
+  rule();
+  std::printf("%3s %14s %10s %10s %14s %10s %10s\n", "N", "rejection[ns]", "fail", "att/obj",
+              "free_space[ns]", "fail", "att/obj");
+  rule();
+  std::vector<double> ns;
+  std::vector<double> times;
+  for (const int n : points) {
+    double t[2] = {0.0, 0.0};
+    SceneStats stats[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string yaml =
+          clutterYaml(n) + (k == 0 ? "    strategy: rejection\n" : "    strategy: free_space\n");
+      const Setup setup = makeSetup(ps::parseYaml(yaml, "clutter"));
+      SceneLoop loop(setup.request, ps::makeCollisionChecker(ps::CollisionMode::Radius, 0.0));
+      t[k] = nsPerOp(options, [&](std::uint64_t i) { loop.runSeeded(i); });
+      stats[k] = collectStats(loop, options.statScenes);
+    }
+    std::printf("%3d %14.0f %10.4f %10.2f %14.0f %10.4f %10.2f\n", n, t[0], stats[0].failureRate(),
+                stats[0].attemptsPerObject(), t[1], stats[1].failureRate(),
+                stats[1].attemptsPerObject());
+    ns.push_back(n);
+    times.push_back(t[1]);
+  }
+  std::printf("log-log slope of free_space's time per scene over N = 5..60: %.2f\n",
+              logLogSlope(ns, times));
+  // strategy dense past the jamming limit: 80 of them.
+  const Setup dense = makeSetup(ps::parseYaml(clutterYaml(80) + "    strategy: dense\n", "dense"));
+  SceneLoop loop(dense.request, ps::makeCollisionChecker(ps::CollisionMode::Radius, 0.0));
+  const double t = nsPerOp(options, [&](std::uint64_t i) { loop.runSeeded(i); });
+  const SceneStats stats = collectStats(loop, options.statScenes);
+  std::printf("dense, N = 80: %.0f ns per scene, failure rate %.4f, sites tried per object %.2f\n",
+              t, stats.failureRate(), stats.attemptsPerObject());
+}
+
 void benchFcl(const Options& options) {
   std::printf(
       "\nfcl against radius, time per scene, one thread, per-scene seeding (median of %d)\n",
@@ -685,7 +727,7 @@ void benchConfigFiles(const Options& options) {
 int usage(const char* self) {
   std::fprintf(stderr,
                "usage: %s [--config-dir DIR] [--quick] [--default-malloc] [--only "
-               "envs|blocks|clutter|fcl|batch]\n"
+               "envs|blocks|clutter|strategies|fcl|batch]\n"
                "       %s [--quick] --config FILE [--config FILE ...]\n"
                "Times the samplers on fixed configurations and seeds and prints tables.\n"
                "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
@@ -716,8 +758,8 @@ int main(int argc, char** argv) {
       options.statScenes = 500;
     } else if (arg == "--only" && i + 1 < argc) {
       only = argv[++i];
-      if (only != "envs" && only != "blocks" && only != "clutter" && only != "fcl" &&
-          only != "batch") {
+      if (only != "envs" && only != "blocks" && only != "clutter" && only != "strategies" &&
+          only != "fcl" && only != "batch") {
         return usage(argv[0]);
       }
     } else {
@@ -746,6 +788,9 @@ int main(int argc, char** argv) {
     }
     if (only.empty() || only == "clutter") {
       benchClutter(options);
+    }
+    if (only.empty() || only == "strategies") {
+      benchStrategies(options);
     }
     if (only.empty() || only == "fcl") {
       benchFcl(options);

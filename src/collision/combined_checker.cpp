@@ -29,6 +29,10 @@ std::ptrdiff_t CombinedChecker::firstCollision(const std::vector<PlacedEntry>& e
   return hit != kNone ? hit : second_->firstCollision(entries, candidate);
 }
 
+bool CombinedChecker::includesRadiusTest() const {
+  return first_->includesRadiusTest() || second_->includesRadiusTest();
+}
+
 bool CombinedChecker::needsOrientation() const {
   return first_->needsOrientation() || second_->needsOrientation();
 }

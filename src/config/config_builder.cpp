@@ -176,7 +176,7 @@ class Builder {
     detail::checkSamplerKeys(
         item, {"type", "objects", "x_range", "y_range", "rotation", "rotation_axis",
                "ensure_object_boundary_in_range", "ensure_valid_placement", "reference_pos",
-               "z_offset", "sample_args", "max_attempts"});
+               "z_offset", "sample_args", "max_attempts", "region", "keep_out", "strategy"});
     const std::string name = samplerName(item);
     const ConfigNode& s = *item.params;
     const UniformSamplerParams p = detail::parseUniformParams(s, config_.maxAttempts);
@@ -205,8 +205,8 @@ class Builder {
       // Point at the parameter the sampler complains about when it names one.
       const std::string message = e.what();
       const ConfigNode* where = &s;
-      for (const char* key :
-           {"x_range", "y_range", "rotation", "reference_pos", "z_offset", "max_attempts"}) {
+      for (const char* key : {"x_range", "y_range", "rotation", "reference_pos", "z_offset",
+                              "max_attempts", "region"}) {
         if (message.find(std::string("': ") + key + " ") != std::string::npos && s.get(key)) {
           where = s.get(key);
         }

@@ -2,6 +2,7 @@
 #include <sstream>
 
 #include "config/builder_parts.hpp"
+#include "config/region_config.hpp"
 #include "placement_samplers/text.hpp"
 
 namespace placement_samplers::detail {
@@ -14,6 +15,28 @@ UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAt
   }
   if (const ConfigNode* n = s.get("y_range")) {
     p.yRange = parseRange(*n);
+  }
+  if (const ConfigNode* n = s.get("region")) {
+    for (const char* key : {"x_range", "y_range"}) {
+      if (s.get(key) != nullptr) {
+        s.at(key).fail(std::string("region replaces ") + key + ": give one or the other");
+      }
+    }
+    p.region = parseRegionShape(*n);
+  }
+  if (const ConfigNode* n = s.get("keep_out")) {
+    p.keepOut = parseKeepOut(*n);
+  }
+  if (const ConfigNode* n = s.get("strategy")) {
+    const std::string& strategy = n->asString();
+    if (strategy != "rejection" && strategy != "free_space" && strategy != "dense") {
+      n->fail("expected rejection, free_space or dense, got " + quoteText(strategy));
+    }
+    if (strategy == "free_space") {
+      p.strategy = UniformSamplerParams::Strategy::FreeSpace;
+    } else if (strategy == "dense") {
+      p.strategy = UniformSamplerParams::Strategy::Dense;
+    }
   }
   if (const ConfigNode* n = s.get("rotation")) {
     if (n->type() == ConfigNode::Type::Null) {

@@ -45,6 +45,64 @@ void appendBounds(std::string& out, const ObjectModel& object) {
 
 void appendSampler(std::string& out, const PlacementSampler& sampler);
 
+/// {"shape": kind, and its parameters under their configuration names}.
+void appendShape(std::string& out, const RegionShape& s, const char* frame) {
+  out += "{\"shape\": \"";
+  out += shapeKindName(s.kind);
+  out += '"';
+  const auto key = [&](const char* name) {
+    out += ", \"";
+    out += name;
+    out += "\": ";
+  };
+  switch (s.kind) {
+    case RegionShape::Kind::Rectangle:
+      key("x_range");
+      appendVector(out, s.xRange.data(), 2);
+      key("y_range");
+      appendVector(out, s.yRange.data(), 2);
+      break;
+    case RegionShape::Kind::RotatedRectangle:
+      key("centre");
+      appendVector(out, s.centre.data(), 2);
+      key("size");
+      appendVector(out, s.size.data(), 2);
+      key("yaw");
+      appendNumber(out, s.yaw);
+      break;
+    case RegionShape::Kind::Disk:
+      key("centre");
+      appendVector(out, s.centre.data(), 2);
+      key("radius");
+      appendNumber(out, s.radius);
+      break;
+    case RegionShape::Kind::Annulus:
+      key("centre");
+      appendVector(out, s.centre.data(), 2);
+      key("inner_radius");
+      appendNumber(out, s.innerRadius);
+      key("outer_radius");
+      appendNumber(out, s.radius);
+      break;
+    case RegionShape::Kind::Polygon:
+      key("vertices");
+      out += '[';
+      for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+        out += i == 0 ? "" : ", ";
+        appendVector(out, s.vertices[i].data(), 2);
+      }
+      out += ']';
+      break;
+  }
+  if (frame != nullptr) {
+    key("frame");
+    out += '"';
+    out += frame;
+    out += '"';
+  }
+  out += '}';
+}
+
 void appendSampleArgs(std::string& out, const SampleArgs& args) {
   out += '{';
   bool first = true;
@@ -99,6 +157,23 @@ void appendUniform(std::string& out, const UniformRandomSampler& sampler) {
   appendNumber(out, p.zOffset);
   out += ", \"max_attempts\": ";
   appendInteger(out, p.maxAttempts);
+  if (p.strategy == UniformSamplerParams::Strategy::FreeSpace) {
+    out += ", \"strategy\": \"free_space\"";
+  } else if (p.strategy == UniformSamplerParams::Strategy::Dense) {
+    out += ", \"strategy\": \"dense\"";
+  }
+  if (p.region) {
+    out += ", \"region\": ";
+    appendShape(out, *p.region, nullptr);
+  }
+  if (!p.keepOut.empty()) {
+    out += ", \"keep_out\": [";
+    for (std::size_t i = 0; i < p.keepOut.size(); ++i) {
+      out += i == 0 ? "" : ", ";
+      appendShape(out, p.keepOut[i].shape, p.keepOut[i].world ? "world" : "sampler");
+    }
+    out += ']';
+  }
   out += p.hides ? ", \"hides\": true}" : ", \"hides\": false}";
 }
 

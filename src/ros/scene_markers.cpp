@@ -108,11 +108,33 @@ class MarkerBuilder {
   }
 
   void region(const SamplerRegion& region) {
+    if (!region.triangles.empty()) {
+      shapeRegion(region);
+      return;
+    }
     // A zero-width range still shows as a thin line.
     const Eigen::Vector3d size(std::max(region.size.x(), 0.002), std::max(region.size.y(), 0.002),
                                0.002);
     add("regions", Marker::CUBE, Eigen::Isometry3d(Eigen::Translation3d(region.centre)), size,
         colour(0.2f, 0.9f, 0.2f, 0.25f));
+  }
+
+  /// Any other region shape, green, or a keep-out zone, red (namespace "keep_out"), as
+  /// triangles 1 mm above the regions so a zone shows over its sampler's region.
+  void shapeRegion(const SamplerRegion& region) {
+    const Eigen::Vector3d lift(0.0, 0.0, region.keepOut ? 0.001 : 0.0);
+    Marker& m =
+        add(region.keepOut ? "keep_out" : "regions", Marker::TRIANGLE_LIST,
+            Eigen::Isometry3d::Identity(), Eigen::Vector3d::Ones(),
+            region.keepOut ? colour(0.9f, 0.15f, 0.15f, 0.35f) : colour(0.2f, 0.9f, 0.2f, 0.25f));
+    m.points.reserve(region.triangles.size());
+    for (const Eigen::Vector3d& v : region.triangles) {
+      geometry_msgs::Point p;
+      p.x = v.x() + lift.x();
+      p.y = v.y() + lift.y();
+      p.z = v.z() + lift.z();
+      m.points.push_back(p);
+    }
   }
 
   /// The name above the object's top, in namespace "labels" (rviz can switch it off).

@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "placement_samplers/sampling/region.hpp"
 #include "placement_samplers/sampling/sequential_composite_sampler.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 
@@ -58,7 +59,33 @@ struct Walker {
     region.centre = *b + Eigen::Vector3d(0.5 * (p.xRange[0] + p.xRange[1]),
                                          0.5 * (p.yRange[0] + p.yRange[1]), p.zOffset);
     region.size = Eigen::Vector2d(p.xRange[1] - p.xRange[0], p.yRange[1] - p.yRange[0]);
+    if (p.region) {
+      region.centre = *b + Eigen::Vector3d(0.0, 0.0, p.zOffset);
+      region.triangles = lift(shapeTriangles(*p.region), region.centre);
+    }
     regions.push_back(region);
+    for (const KeepOutZone& zone : p.keepOut) {
+      SamplerRegion keepOut;
+      keepOut.sampler = uniform->name();
+      keepOut.keepOut = true;
+      keepOut.centre = *b + Eigen::Vector3d(0.0, 0.0, p.zOffset);
+      if (zone.world) {
+        keepOut.centre.head<2>().setZero();
+      }
+      keepOut.triangles = lift(shapeTriangles(zone.shape), keepOut.centre);
+      regions.push_back(keepOut);
+    }
+  }
+
+  /// Plane points at @p origin's height, moved by its x and y.
+  static std::vector<Eigen::Vector3d> lift(const std::vector<Eigen::Vector2d>& points,
+                                           const Eigen::Vector3d& origin) {
+    std::vector<Eigen::Vector3d> out;
+    out.reserve(points.size());
+    for (const Eigen::Vector2d& q : points) {
+      out.push_back(origin + Eigen::Vector3d(q.x(), q.y(), 0.0));
+    }
+    return out;
   }
 };
 

@@ -91,6 +91,7 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
   if (params_.maxAttempts == 0) {
     throw ConfigError(where + "max_attempts must be at least 1");
   }
+  checkShapes(where);
   axis_ = Eigen::Vector3d::Unit(params_.rotationAxis);
   addObjects(objects);
 }
@@ -114,8 +115,8 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
       throw ConfigError("sampler " + quoteText(name()) + ": object " + quoteText(object->name) +
                         " is already in this sampler");
     }
-    Entry entry{object, effectiveRange(*object, 0), effectiveRange(*object, 1)};
-    for (int axis = 0; axis < 2; ++axis) {
+    Entry entry{object, effectiveRange(*object, 0), effectiveRange(*object, 1), nullptr};
+    for (int axis = 0; axis < 2 && !params_.region; ++axis) {
       const Eigen::Vector2d& r = axis == 0 ? entry.x : entry.y;
       if (r[0] > r[1]) {
         const char* key = axis == 0 ? "x_range" : "y_range";
@@ -128,6 +129,9 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
             << 2.0 * object->horizontalRadius << " m wide";
         throw ConfigError(out.str());
       }
+    }
+    if (params_.region || !params_.keepOut.empty()) {
+      entry.draw = regionDraw(*object);
     }
     entries_.push_back(entry);
   }
@@ -182,6 +186,12 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
       base.z() += ref->object->topOffset.z();
     }
   }
+  if (params_.strategy == UniformSamplerParams::Strategy::FreeSpace) {
+    return sampleFreeSpace(context, base, onTop);
+  }
+  if (params_.strategy == UniformSamplerParams::Strategy::Dense) {
+    return sampleDense(context, base, onTop);
+  }
   for (const Entry& entry : entries_) {
     if (!placeOne(context, entry, base, onTop)) {
       return false;
@@ -192,6 +202,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
 
 bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
                                     const Eigen::Vector3d& base, bool onTop) const {
+  if (entry.draw) {
+    return placeOneShaped(context, entry, base, onTop);
+  }
   const ObjectModel& object = *entry.object;
   // robosuite's draws: per attempt x then y, one rotation draw after the accepted attempt
   // (the fcl modes draw it per attempt, before their test, which needs it).
@@ -241,6 +254,13 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
     return true;
   }
 
+  return failPlacement(context, object, limit, counts, 0);
+}
+
+bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectModel& object,
+                                         std::uint32_t limit,
+                                         const std::vector<std::uint32_t>* counts,
+                                         std::uint32_t outside) const {
   Failure failure;
   failure.object = object.name;
   failure.sampler = name();
@@ -263,6 +283,10 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
     if (others > 0) {
       out << " (and " << others << " other" << (others > 1 ? "s" : "") << " blocked too)";
     }
+  }
+  if (outside > 0) {
+    out << (counts != nullptr && !counts->empty() ? "; " : ": ") << outside
+        << " of them fell into a keep-out zone or too near the region's edge";
   }
   failure.message = out.str();
   context.fail(std::move(failure));

@@ -226,7 +226,9 @@ TEST(NpzWriter, NumpyLoadsBothLayouts) {
         "assert d['attempts'].tolist() == [[13, 14], [14, 0], [15, 16]], d['attempts']\n";
     const std::string scriptPath = tempPath("check.py");
     std::ofstream(scriptPath) << script;
-    EXPECT_EQ(std::system(("python3 " + scriptPath + " " + path).c_str()), 0)
+    EXPECT_EQ(std::system(
+                  (std::string(PLACEMENT_SAMPLERS_PYTHON) + " " + scriptPath + " " + path).c_str()),
+              0)
         << (zip64 ? "zip64" : "plain");
     std::remove(path.c_str());
     std::remove(scriptPath.c_str());

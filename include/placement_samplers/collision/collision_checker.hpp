@@ -60,6 +60,9 @@ class CollisionChecker {
                                         const Candidate& candidate) = 0;
   /// True when the candidate's orientation matters (then it is drawn before the test).
   virtual bool needsOrientation() const = 0;
+  /// True when every candidate this checker accepts also passes robosuite's radius test
+  /// (strategy free_space may then prune with it).
+  virtual bool includesRadiusTest() const { return false; }
 };
 
 /// Collision modes of the configuration and of requests.

@@ -20,6 +20,7 @@ class CombinedChecker : public CollisionChecker {
   std::ptrdiff_t firstCollision(const std::vector<PlacedEntry>& entries,
                                 const Candidate& candidate) override;
   bool needsOrientation() const override;
+  bool includesRadiusTest() const override;
 
  private:
   std::unique_ptr<CollisionChecker> first_;

@@ -43,6 +43,7 @@ class RadiusChecker : public CollisionChecker {
   std::ptrdiff_t firstCollision(const std::vector<PlacedEntry>& entries,
                                 const Candidate& candidate) override;
   bool needsOrientation() const override { return false; }
+  bool includesRadiusTest() const override { return true; }
 
  private:
   struct Item;

@@ -24,7 +24,8 @@ void appendSceneJson(std::string& out, const SceneResult& scene);
 /// {"type": "sequential", "name", "samplers": [{"sampler", "sample_args"}]} and
 /// {"type": "uniform", "name", "objects", "x_range", "y_range", "rotation" (null, an angle or
 /// [min, max] [rad]), "rotation_axis", "ensure_object_boundary_in_range",
-/// "ensure_valid_placement", "reference_pos", "z_offset", "max_attempts", "hides"}; sample_args
+/// "ensure_valid_placement", "reference_pos", "z_offset", "max_attempts", "region" and
+/// "keep_out" when set (shapes as configured), "hides"}; sample_args
 /// hold "reference" (a name or [x, y, z]) and "on_top" when set.
 std::string configToJson(const SceneConfig& config);
 

@@ -14,8 +14,9 @@ namespace ros_interface {
 
 /// Markers of one scene in @p frameId: a DELETEALL first, then each placed object's collision
 /// shapes (namespace "objects", in the colour of its name), each fixture's ("fixtures", grey),
-/// the name of each above it ("labels") and each uniform sampler's region as a thin translucent
-/// box ("regions"). Hidden objects are left out.
+/// the name of each above it ("labels"), each uniform sampler's region ("regions": a thin
+/// translucent box for x_range/y_range, a TRIANGLE_LIST for other shapes) and its keep-out zones
+/// ("keep_out", red triangles). Hidden objects are left out.
 visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
                                                  const SceneResult& scene,
                                                  const std::string& frameId,

@@ -41,6 +41,7 @@ class SampleContext {
     return checker_.firstCollision(entries_, candidate);
   }
   bool needsOrientation() const { return checker_.needsOrientation(); }
+  bool includesRadiusTest() const { return checker_.includesRadiusTest(); }
 
   /// Per-entry rejection counters, zeroed, sized for the current entries.
   std::vector<std::uint32_t>& blockerCounts();

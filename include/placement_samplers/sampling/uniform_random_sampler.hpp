@@ -2,10 +2,13 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "placement_samplers/sampling/placement_sampler.hpp"
+#include "placement_samplers/sampling/region.hpp"
 
 namespace placement_samplers {
 
@@ -34,6 +37,16 @@ struct UniformSamplerParams {
   double zOffset = 0.0;                                    ///< [m]
   std::uint32_t maxAttempts = 5000;                        ///< samples per object
   bool hides = false;  ///< its placements are hidden objects (hide()): not drawn
+  /// Another shape instead of xRange/yRange (which stay zero), around the reference; a
+  /// rectangle is turned into xRange/yRange.
+  std::optional<RegionShape> region;
+  std::vector<KeepOutZone> keepOut;  ///< where no placed object may be
+  /// rejection: robosuite's blind attempts; free_space: draws only from grid cells not yet
+  /// known to be blocked (the same distribution, uniform over the free positions); dense: the
+  /// sites of a randomly shifted and turned hexagonal lattice, in random order (another
+  /// distribution, past the random-packing limit)
+  enum class Strategy { Rejection, FreeSpace, Dense };
+  Strategy strategy = Strategy::Rejection;
 };
 
 /// robosuite's UniformRandomSampler: rejection sampling of x and y in ranges around a
@@ -64,11 +77,28 @@ class UniformRandomSampler : public PlacementSampler {
     ObjectPtr object;
     Eigen::Vector2d x;  ///< effective x interval [m]
     Eigen::Vector2d y;  ///< effective y interval [m]
+    /// The inset region's draws when there is a region shape or a keep-out zone (else x, y).
+    std::shared_ptr<const RegionDraw> draw;
   };
 
   Eigen::Quaterniond sampleOrientation(Engine& engine, const ObjectModel& object) const;
   bool placeOne(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                 bool onTop) const;
+  /// placeOne() for a region shape or keep-out zones (shaped_placement.cpp).
+  bool placeOneShaped(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
+                      bool onTop) const;
+  /// sample() with strategy dense (dense_placement.cpp).
+  bool sampleDense(SampleContext& context, const Eigen::Vector3d& base, bool onTop) const;
+  /// sample() with strategy free_space (free_space_placement.cpp).
+  bool sampleFreeSpace(SampleContext& context, const Eigen::Vector3d& base, bool onTop) const;
+  /// Records that @p object could not be placed in @p limit attempts; @p outside of them fell
+  /// outside the inset region or into a keep-out zone. @return false
+  bool failPlacement(SampleContext& context, const ObjectModel& object, std::uint32_t limit,
+                     const std::vector<std::uint32_t>* counts, std::uint32_t outside) const;
+  /// Checks region and keep-out zones (constructor).
+  void checkShapes(const std::string& where);
+  /// The draws for @p object, shared by the objects of one horizontal radius (addObjects()).
+  std::shared_ptr<const RegionDraw> regionDraw(const ObjectModel& object);
 
   UniformSamplerParams params_;
   Eigen::Vector3d axis_;

@@ -11,8 +11,10 @@ namespace placement_samplers {
 /// when its reference resolves to @p base [m]: 0 inside. The region is the sampler's x and y
 /// range around @p base, shrunk by the object's horizontal radius when
 /// ensure_object_boundary_in_range is on (UniformRandomSampler::effectiveRange()); the distance
-/// is the horizontal one to the nearest point of it. The one place that says what a region is:
-/// other region shapes and keep-outs extend this function.
+/// is the horizontal one to the nearest point of it. Another region shape (`region`) is inset
+/// the same way (the signed depth's shortfall); a keep-out zone counts as outside, by how far
+/// the object's disk (its centre without the flag) reaches into it. The one place that says what
+/// a region is.
 double distanceOutsideRegion(const UniformRandomSampler& sampler, const ObjectModel& object,
                              const Eigen::Vector3d& base, const Eigen::Vector3d& position);
 

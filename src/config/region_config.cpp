@@ -1,0 +1,90 @@
+#include "config/region_config.hpp"
+
+#include "config/builder_parts.hpp"
+#include "placement_samplers/text.hpp"
+
+namespace placement_samplers::detail {
+namespace {
+
+Eigen::Vector2d vector2(const ConfigNode& n) {
+  const std::vector<double> v = n.asNumbers(2);
+  return Eigen::Vector2d(v[0], v[1]);
+}
+
+RegionShape parseShape(const ConfigNode& node, bool keepOut) {
+  if (!node.isMap()) {
+    node.fail(
+        "expected a shape: a map with shape: rectangle, rotated_rectangle, disk, annulus or "
+        "polygon and its sizes");
+  }
+  const ConfigNode& kind = node.at("shape");
+  const std::string& name = kind.asString();
+  std::vector<std::string> keys{"shape"};
+  if (keepOut) {
+    keys.push_back("frame");
+  }
+  RegionShape s;
+  if (name == "rectangle") {
+    keys.insert(keys.end(), {"x_range", "y_range"});
+    node.checkKeys(keys);
+    s = RegionShape::rectangle(parseRange(node.at("x_range")), parseRange(node.at("y_range")));
+  } else if (name == "rotated_rectangle") {
+    keys.insert(keys.end(), {"centre", "size", "yaw"});
+    node.checkKeys(keys);
+    s = RegionShape::rotatedRectangle(
+        node.get("centre") ? vector2(node.at("centre")) : Eigen::Vector2d::Zero(),
+        vector2(node.at("size")), node.get("yaw") ? node.at("yaw").asDouble() : 0.0);
+  } else if (name == "disk") {
+    keys.insert(keys.end(), {"centre", "radius"});
+    node.checkKeys(keys);
+    s = RegionShape::disk(node.get("centre") ? vector2(node.at("centre")) : Eigen::Vector2d::Zero(),
+                          node.at("radius").asDouble());
+  } else if (name == "annulus") {
+    keys.insert(keys.end(), {"centre", "inner_radius", "outer_radius"});
+    node.checkKeys(keys);
+    s = RegionShape::annulus(
+        node.get("centre") ? vector2(node.at("centre")) : Eigen::Vector2d::Zero(),
+        node.at("inner_radius").asDouble(), node.at("outer_radius").asDouble());
+  } else if (name == "polygon") {
+    keys.insert(keys.end(), {"vertices"});
+    node.checkKeys(keys);
+    const ConfigNode& list = node.at("vertices");
+    std::vector<Eigen::Vector2d> vertices;
+    for (const ConfigNode& v : list.elements()) {
+      vertices.push_back(vector2(v));
+    }
+    s = RegionShape::polygon(std::move(vertices));
+  } else {
+    kind.fail("expected rectangle, rotated_rectangle, disk, annulus or polygon, got " +
+              quoteText(name));
+  }
+  if (const auto problem = findShapeProblem(s)) {
+    const ConfigNode* where = node.get(problem->key);
+    (where ? *where : node).fail(problem->message);
+  }
+  return s;
+}
+
+}  // namespace
+
+RegionShape parseRegionShape(const ConfigNode& node) { return parseShape(node, false); }
+
+std::vector<KeepOutZone> parseKeepOut(const ConfigNode& node) {
+  std::vector<KeepOutZone> zones;
+  for (const ConfigNode& item : node.elements()) {
+    KeepOutZone zone;
+    zone.shape = parseShape(item, true);
+    if (const ConfigNode* frame = item.get("frame")) {
+      const std::string& f = frame->asString();
+      if (f != "sampler" && f != "world") {
+        frame->fail("expected sampler (around the sampler's reference) or world, got " +
+                    quoteText(f));
+      }
+      zone.world = f == "world";
+    }
+    zones.push_back(std::move(zone));
+  }
+  return zones;
+}
+
+}  // namespace placement_samplers::detail

@@ -1,0 +1,233 @@
+// Strategy free_space of the uniform sampler: draws from the cells that may still hold a free
+// position (free_cells.hpp) instead of the whole region.
+#include <algorithm>
+#include <cmath>
+
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "placement_samplers/text.hpp"
+#include "sampling/free_cells.hpp"
+
+namespace placement_samplers {
+namespace {
+
+/// Cells per side of the largest level-0 grid: 64 x 64.
+constexpr std::size_t kMaxCells = 4096;
+
+/// What decides the blocked set of one object: objects that share it share the cells.
+struct CellKey {
+  double radius = -1.0;
+  double margin = 0.0;
+  double z = 0.0;
+  double bottom = 0.0;
+  bool operator==(const CellKey& o) const {
+    return radius == o.radius && margin == o.margin && z == o.z && bottom == o.bottom;
+  }
+};
+
+/// The entries that may block an object, bucketed by their x-y (sampler frame) in squares of
+/// the largest reach, so that testing a cell reads the entries of the 3 x 3 squares around it.
+class NearbyEntries {
+ public:
+  void reset(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double side) {
+    const Eigen::Vector2d extent = hi - lo;
+    side_ = std::max(side, std::sqrt(extent.x() * extent.y() / 65536.0));
+    lo_ = lo;
+    nx_ = std::max(1, static_cast<int>(std::ceil(extent.x() / side_)));
+    ny_ = std::max(1, static_cast<int>(std::ceil(extent.y() / side_)));
+    buckets_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
+    for (std::vector<std::size_t>& bucket : buckets_) {
+      bucket.clear();  // keeps its buffer for the next scene
+    }
+  }
+  void add(std::size_t index, const Eigen::Vector2d& p) {
+    buckets_[static_cast<std::size_t>(row(p.y()) * nx_ + column(p.x()))].push_back(index);
+  }
+  /// True when @p f is true for an entry of the squares around @p p; entries outside the grid
+  /// sit in its border squares, so every entry within one side of @p p is read.
+  template <typename F>
+  bool any(const Eigen::Vector2d& p, const F& f) const {
+    const int i = column(p.x());
+    const int j = row(p.y());
+    for (int b = std::max(j - 1, 0); b <= std::min(j + 1, ny_ - 1); ++b) {
+      for (int a = std::max(i - 1, 0); a <= std::min(i + 1, nx_ - 1); ++a) {
+        for (const std::size_t index : buckets_[static_cast<std::size_t>(b * nx_ + a)]) {
+          if (f(index)) {
+            return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+ private:
+  int column(double x) const {
+    return std::clamp(static_cast<int>(std::floor((x - lo_.x()) / side_)), 0, nx_ - 1);
+  }
+  int row(double y) const {
+    return std::clamp(static_cast<int>(std::floor((y - lo_.y()) / side_)), 0, ny_ - 1);
+  }
+
+  Eigen::Vector2d lo_ = Eigen::Vector2d::Zero();
+  double side_ = 1.0;
+  int nx_ = 1;
+  int ny_ = 1;
+  std::vector<std::vector<std::size_t>> buckets_;
+};
+
+}  // namespace
+
+bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::Vector3d& base,
+                                           bool onTop) const {
+  const RegionShape region =
+      params_.region ? *params_.region : RegionShape::rectangle(params_.xRange, params_.yRange);
+  const Eigen::Vector2d offset = base.head<2>();
+  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
+  const std::uint32_t limit =
+      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  const bool check = params_.ensureValidPlacement;
+  const bool orientFirst = check && context.needsOrientation();
+  // robosuite's radius test prunes cells only when the check includes it (radius,
+  // radius_and_fcl): fcl alone may accept what it refuses, so there only the region and the
+  // keep-out zones prune.
+  const bool prune = check && context.includesRadiusTest();
+  // Per thread, so that their buffers serve every scene (nothing here calls another sampler).
+  thread_local detail::FreeCells cells;
+  thread_local NearbyEntries nearby;
+  CellKey previous;
+  std::size_t applied = 0;
+
+  for (const Entry& entry : entries_) {
+    const ObjectModel& object = *entry.object;
+    const double radius = object.horizontalRadius;
+    const double margin = params_.ensureObjectBoundaryInRange ? radius : 0.0;
+    const double bottom = object.bottomOffset.z();
+    const double z = params_.zOffset + base.z() - (onTop ? bottom : 0.0);
+    // Whole cells (centre c, half diagonal h, in the sampler's frame) known to be blocked: the
+    // distances change by at most h over the cell. The disks shrink by a hair, so rounding
+    // never drops a free position.
+    const auto blocks = [&](const PlacedEntry& e) {
+      return z - e.position.z() <= e.object->topOffset.z() - bottom;  // robosuite's z half
+    };
+    const auto disk = [&](const PlacedEntry& e, const Eigen::Vector2d& c, double h) {
+      const double reach = radius + e.object->horizontalRadius;
+      const double inside = reach * (1.0 - 1e-12) - 1e-12 - h;
+      return inside > 0.0 && (c + offset - e.position.head<2>()).squaredNorm() < inside * inside;
+    };
+    const auto covered = [&](const Eigen::Vector2d& c, double h) {
+      if (shapeDepth(region, c) + h < margin) {
+        return true;
+      }
+      for (const KeepOutZone& zone : params_.keepOut) {
+        if (shapeDepth(zone.shape, zone.world ? Eigen::Vector2d(c + offset) : c) - h > -margin) {
+          return true;
+        }
+      }
+      return prune &&
+             nearby.any(c, [&](std::size_t i) { return disk(context.entries()[i], c, h); });
+    };
+
+    const CellKey key{radius, margin, z, bottom};
+    if (!(key == previous)) {
+      Eigen::Vector2d lo;
+      Eigen::Vector2d hi;
+      shapeBounds(region, lo, hi);
+      lo += Eigen::Vector2d::Constant(margin);
+      hi -= Eigen::Vector2d::Constant(margin);
+      if (!(hi.x() > lo.x() && hi.y() > lo.y())) {
+        // A region of no area (a range the shrink leaves zero wide): robosuite's draws.
+        if (!placeOne(context, entry, base, onTop)) {
+          return false;
+        }
+        previous = CellKey();
+        continue;
+      }
+      const double side = radius > 0.0 ? radius : (hi - lo).maxCoeff() / 32.0;
+      cells.reset(lo, hi, side, kMaxCells);
+      double reach = 2.0 * radius;
+      for (const PlacedEntry& e : context.entries()) {
+        reach = std::max(reach, radius + e.object->horizontalRadius);
+      }
+      nearby.reset(lo, hi, std::max(reach, 1e-6));
+      for (std::size_t i = 0; prune && i < context.entries().size(); ++i) {
+        if (blocks(context.entries()[i])) {
+          nearby.add(i, context.entries()[i].position.head<2>() - offset);
+        }
+      }
+      cells.dropIf(covered);
+      previous = key;
+    } else if (prune) {
+      // Same object size and height: only the objects placed since can block more.
+      for (std::size_t i = applied; i < context.entries().size(); ++i) {
+        const PlacedEntry& e = context.entries()[i];
+        if (blocks(e)) {
+          nearby.add(i, e.position.head<2>() - offset);
+          cells.dropIf([&](const Eigen::Vector2d& c, double h) { return disk(e, c, h); });
+        }
+      }
+    }
+    applied = context.entries().size();
+
+    std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
+    std::uint32_t outside = 0;
+    std::uint32_t collided = 0;
+    Candidate candidate;
+    candidate.object = &object;
+    candidate.position.z() = z;
+    bool placed = false;
+    for (std::uint32_t attempt = 1; attempt <= limit && !placed; ++attempt) {
+      if (cells.empty() || ((attempt & 1023u) == 0 && context.expired())) {
+        Failure failure;
+        failure.object = object.name;
+        failure.sampler = name();
+        failure.attempts = attempt - 1;
+        failure.message =
+            cells.empty()
+                ? "could not place object " + quoteText(object.name) + " with sampler " +
+                      quoteText(name()) + ": no free position is left (strategy free_space, " +
+                      std::to_string(attempt - 1) + " attempts)"
+                : "stopped placing object " + quoteText(object.name) + " with sampler " +
+                      quoteText(name()) + " after " + std::to_string(attempt - 1) +
+                      " attempts: the request ran out of time";
+        context.fail(std::move(failure));
+        return false;
+      }
+      int level = 0;
+      std::size_t index = 0;
+      const Eigen::Vector2d local = cells.draw(engine, level, index);
+      candidate.position.head<2>() = local + offset;
+      if (orientFirst) {
+        candidate.orientation = sampleOrientation(engine, object);
+      }
+      bool blocked = shapeDepth(region, local) < margin;
+      for (std::size_t i = 0; i < params_.keepOut.size() && !blocked; ++i) {
+        const KeepOutZone& zone = params_.keepOut[i];
+        blocked = keepOutBlocks(zone, zone.world ? Eigen::Vector2d(local + offset) : local, margin);
+      }
+      outside += blocked ? 1 : 0;
+      if (!blocked && check) {
+        const std::ptrdiff_t blocker = context.firstCollision(candidate);
+        if (blocker != CollisionChecker::kNone) {
+          ++(*counts)[static_cast<std::size_t>(blocker)];
+          ++collided;
+          blocked = true;
+        }
+      }
+      if (blocked) {
+        cells.refine(level, index, covered);
+        continue;
+      }
+      if (!orientFirst) {
+        candidate.orientation = sampleOrientation(engine, object);
+      }
+      context.addPlacement(name(), candidate, attempt, params_.hides);
+      placed = true;
+    }
+    if (!placed) {
+      return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+    }
+  }
+  return true;
+}
+
+}  // namespace placement_samplers

@@ -1,0 +1,119 @@
+// The uniform sampler's region shapes and keep-out zones, apart from robosuite's rectangle
+// (uniform_random_sampler.cpp), whose loop stays as it was.
+#include <sstream>
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "placement_samplers/text.hpp"
+
+namespace placement_samplers {
+
+void UniformRandomSampler::checkShapes(const std::string& where) {
+  if (params_.region) {
+    if (params_.xRange != Eigen::Vector2d::Zero() || params_.yRange != Eigen::Vector2d::Zero()) {
+      throw ConfigError(where + "region replaces x_range and y_range: give one or the other");
+    }
+    if (const auto problem = findShapeProblem(*params_.region)) {
+      throw ConfigError(where + "region." + problem->key + ": " + problem->message);
+    }
+    if (params_.region->kind == RegionShape::Kind::Rectangle) {
+      // robosuite's own rectangle: the same draws as x_range and y_range.
+      params_.xRange = params_.region->xRange;
+      params_.yRange = params_.region->yRange;
+      params_.region.reset();
+    }
+  }
+  for (std::size_t i = 0; i < params_.keepOut.size(); ++i) {
+    if (const auto problem = findShapeProblem(params_.keepOut[i].shape)) {
+      throw ConfigError(where + "keep_out[" + std::to_string(i) + "]." + problem->key + ": " +
+                        problem->message);
+    }
+  }
+}
+
+std::shared_ptr<const RegionDraw> UniformRandomSampler::regionDraw(const ObjectModel& object) {
+  const double margin = params_.ensureObjectBoundaryInRange ? object.horizontalRadius : 0.0;
+  for (const Entry& e : entries_) {
+    const double other = params_.ensureObjectBoundaryInRange ? e.object->horizontalRadius : 0.0;
+    if (e.draw && other == margin) {
+      return e.draw;
+    }
+  }
+  const RegionShape shape =
+      params_.region ? *params_.region : RegionShape::rectangle(params_.xRange, params_.yRange);
+  std::optional<RegionDraw> draw = RegionDraw::make(shape, margin);
+  if (!draw) {
+    std::ostringstream out;
+    out << "sampler " << quoteText(name()) << ": region (" << shapeKindName(shape.kind)
+        << ") leaves no room for object " << quoteText(object.name) << " (horizontal radius "
+        << object.horizontalRadius
+        << " m) with ensure_object_boundary_in_range on: no point of it is that far from its edge";
+    throw ConfigError(out.str());
+  }
+  return std::make_shared<const RegionDraw>(std::move(*draw));
+}
+
+bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& entry,
+                                          const Eigen::Vector3d& base, bool onTop) const {
+  const ObjectModel& object = *entry.object;
+  // Per attempt: the region's draws (README, "Region shapes"), the rotation in the fcl modes,
+  // then the inset test of a non-convex polygon, the keep-out zones and the collision test;
+  // the rotation after the accepted attempt otherwise, as robosuite.
+  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
+  const std::uint32_t limit =
+      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  const bool check = params_.ensureValidPlacement;
+  const bool orientFirst = check && context.needsOrientation();
+  std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
+  const double margin = params_.ensureObjectBoundaryInRange ? object.horizontalRadius : 0.0;
+  const Eigen::Vector2d offset = base.head<2>();
+  std::uint32_t outside = 0;
+  std::uint32_t collided = 0;
+
+  Candidate candidate;
+  candidate.object = &object;
+  candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+  for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
+    if ((attempt & 1023u) == 0 && context.expired()) {
+      Failure failure;
+      failure.object = object.name;
+      failure.sampler = name();
+      failure.attempts = attempt - 1;
+      failure.message = "stopped placing object " + quoteText(object.name) + " with sampler " +
+                        quoteText(name()) + " after " + std::to_string(attempt - 1) +
+                        " attempts: the request ran out of time";
+      context.fail(std::move(failure));
+      return false;
+    }
+    const Eigen::Vector2d local = entry.draw->draw(engine);
+    candidate.position.head<2>() = local + offset;
+    if (orientFirst) {
+      candidate.orientation = sampleOrientation(engine, object);
+    }
+    bool blocked = !entry.draw->accepts(local);
+    for (std::size_t i = 0; i < params_.keepOut.size() && !blocked; ++i) {
+      const KeepOutZone& zone = params_.keepOut[i];
+      blocked = keepOutBlocks(zone, zone.world ? local + offset : local, margin);
+    }
+    if (blocked) {
+      ++outside;
+      continue;
+    }
+    if (check) {
+      const std::ptrdiff_t blocker = context.firstCollision(candidate);
+      if (blocker != CollisionChecker::kNone) {
+        ++(*counts)[static_cast<std::size_t>(blocker)];
+        ++collided;
+        continue;
+      }
+    }
+    if (!orientFirst) {
+      candidate.orientation = sampleOrientation(engine, object);
+    }
+    context.addPlacement(name(), candidate, attempt, params_.hides);
+    return true;
+  }
+  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+}
+
+}  // namespace placement_samplers

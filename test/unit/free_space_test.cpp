@@ -1,0 +1,197 @@
+// Strategy free_space: the same distribution as rejection (two-sample KS on statistics of the
+// scenes, fixed seeds), every rule still kept, and a failure only when nothing is free.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "placement_samplers/sampling/region.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
+#include "test_helpers.hpp"
+
+namespace placement_samplers {
+namespace {
+
+std::string clutter(int n, const std::string& strategy, const std::string& shape) {
+  std::string yaml = "objects:\n";
+  std::string names;
+  for (int i = 0; i < n; ++i) {
+    yaml += "  c" + std::to_string(i) + ": {shape: cylinder, radius: 0.03, length: 0.1}\n";
+    names += (i ? ", c" : "c") + std::to_string(i);
+  }
+  return yaml + "samplers:\n  - {name: S, strategy: " + strategy + ", objects: [" + names + "], " +
+         shape + "}\n";
+}
+
+std::vector<SceneResult> run(const std::string& yaml, std::uint64_t seed, std::size_t count,
+                             CollisionMode mode = CollisionMode::Radius) {
+  const SceneGenerator generator(test::buildFromYaml(yaml));
+  SampleRequest request;
+  request.collisionCheck = mode;
+  return generator.sampleScenes(generator.prepare(request), seed, count, 2);
+}
+
+/// Two-sample Kolmogorov-Smirnov distance.
+double ksDistance(std::vector<double> a, std::vector<double> b) {
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  std::size_t i = 0;
+  std::size_t j = 0;
+  double d = 0.0;
+  while (i < a.size() && j < b.size()) {
+    const double x = std::min(a[i], b[j]);
+    while (i < a.size() && a[i] <= x) {
+      ++i;
+    }
+    while (j < b.size() && b[j] <= x) {
+      ++j;
+    }
+    d = std::max(d,
+                 std::abs(static_cast<double>(i) / a.size() - static_cast<double>(j) / b.size()));
+  }
+  return d;
+}
+
+/// The two-sample KS distance that equal distributions exceed with probability 1e-4.
+double ksCritical(std::size_t n, std::size_t m) {
+  return std::sqrt(-0.5 * std::log(1e-4 / 2.0)) * std::sqrt(static_cast<double>(n + m) / (n * m));
+}
+
+using Statistic = std::function<double(const SceneResult&)>;
+
+/// Scenes of both strategies (different seeds: they draw differently) compared on each
+/// statistic; only successful scenes count, as rejection's successes are what it returns.
+void expectSameDistribution(const std::string& rejection, const std::string& freeSpace,
+                            const std::vector<std::pair<std::string, Statistic>>& statistics,
+                            std::size_t scenes) {
+  const std::vector<SceneResult> a = run(rejection, 11, scenes);
+  const std::vector<SceneResult> b = run(freeSpace, 12, scenes);
+  for (const auto& [label, statistic] : statistics) {
+    std::vector<double> x;
+    std::vector<double> y;
+    for (const SceneResult& s : a) {
+      if (s.success) {
+        x.push_back(statistic(s));
+      }
+    }
+    for (const SceneResult& s : b) {
+      if (s.success) {
+        y.push_back(statistic(s));
+      }
+    }
+    ASSERT_GT(x.size(), scenes / 2) << label;
+    ASSERT_GT(y.size(), scenes / 2) << label;
+    EXPECT_LT(ksDistance(x, y), ksCritical(x.size(), y.size())) << label;
+  }
+}
+
+/// The distance from placement @p k to the nearest placement before it [m].
+double nearestEarlier(const SceneResult& s, std::size_t k) {
+  double best = INFINITY;
+  for (std::size_t i = 0; i < k; ++i) {
+    best = std::min(best, (s.placements[i].position - s.placements[k].position).head<2>().norm());
+  }
+  return best;
+}
+
+TEST(FreeSpace, SameDistributionAsRejectionInAClutteredSquare) {
+  const std::string range = "x_range: [-0.2, 0.2], y_range: [-0.2, 0.2]";
+  std::vector<std::pair<std::string, Statistic>> statistics;
+  for (const std::size_t k : {0u, 9u, 24u}) {
+    statistics.push_back({"x of object " + std::to_string(k),
+                          [k](const SceneResult& s) { return s.placements[k].position.x(); }});
+    statistics.push_back(
+        {"distance from the centre of object " + std::to_string(k),
+         [k](const SceneResult& s) { return s.placements[k].position.head<2>().norm(); }});
+  }
+  for (const std::size_t k : {9u, 24u}) {
+    statistics.push_back({"nearest earlier object of object " + std::to_string(k),
+                          [k](const SceneResult& s) { return nearestEarlier(s, k); }});
+  }
+  expectSameDistribution(clutter(25, "rejection", range), clutter(25, "free_space", range),
+                         statistics, 3000);
+}
+
+TEST(FreeSpace, SameDistributionAsRejectionInAnAnnulusWithKeepOut) {
+  const std::string shape =
+      "region: {shape: annulus, inner_radius: 0.1, outer_radius: 0.3}, keep_out: [{shape: "
+      "polygon, vertices: [[0, 0], [0.3, 0], [0.3, 0.2]]}]";
+  std::vector<std::pair<std::string, Statistic>> statistics;
+  for (const std::size_t k : {0u, 14u}) {
+    statistics.push_back({"angle of object " + std::to_string(k), [k](const SceneResult& s) {
+                            return std::atan2(s.placements[k].position.y(),
+                                              s.placements[k].position.x());
+                          }});
+    statistics.push_back({"radius of object " + std::to_string(k), [k](const SceneResult& s) {
+                            return s.placements[k].position.head<2>().norm();
+                          }});
+  }
+  statistics.push_back({"nearest earlier object of object 14",
+                        [](const SceneResult& s) { return nearestEarlier(s, 14); }});
+  expectSameDistribution(clutter(15, "rejection", shape), clutter(15, "free_space", shape),
+                         statistics, 3000);
+}
+
+/// Where rejection runs out of attempts (60 cylinders on a 0.6 m square, 200 attempts each),
+/// free_space still places them, keeping every rule: inside the inset square, no overlap.
+TEST(FreeSpace, FillsWhereRejectionRunsOut) {
+  const std::string range = "x_range: [-0.3, 0.3], y_range: [-0.3, 0.3], max_attempts: 200";
+  std::size_t rejected = 0;
+  for (const SceneResult& s : run(clutter(60, "rejection", range), 5, 100)) {
+    rejected += s.success ? 0 : 1;
+  }
+  std::size_t placed = 0;
+  for (const SceneResult& s : run(clutter(60, "free_space", range), 5, 100)) {
+    placed += s.success ? 1 : 0;
+    for (std::size_t i = 0; i < s.placements.size(); ++i) {
+      EXPECT_LE(s.placements[i].position.head<2>().lpNorm<Eigen::Infinity>(), 0.27 + 1e-12);
+      for (std::size_t j = 0; j < i; ++j) {
+        EXPECT_GT((s.placements[i].position - s.placements[j].position).head<2>().norm(), 0.06);
+      }
+    }
+  }
+  EXPECT_GT(rejected, 50u);
+  EXPECT_GE(placed, 95u);
+}
+
+TEST(FreeSpace, FailsAtOnceWhenNothingIsFree) {
+  const std::vector<SceneResult> out =
+      run("objects:\n  a: {shape: cylinder, radius: 0.1, length: 0.1}\n  b: {shape: cylinder, "
+          "radius: 0.1, length: 0.1}\nsamplers:\n  - {name: S, strategy: free_space, objects: [a, "
+          "b], x_range: [-0.05, 0.05], y_range: [-0.05, 0.05], ensure_object_boundary_in_range: "
+          "false}\n",
+          1, 1);
+  ASSERT_FALSE(out[0].success);
+  EXPECT_EQ(out[0].message,
+            "could not place object 'b' with sampler 'S': no free position is left (strategy "
+            "free_space, 0 attempts)");
+}
+
+/// Under fcl the radius test does not prune (fcl may accept what it refuses): the scenes still
+/// keep the region and the keep-out zones, and pass the check.
+TEST(FreeSpace, FclModesKeepZones) {
+  const std::string shape =
+      "region: {shape: disk, radius: 0.3}, keep_out: [{shape: disk, centre: [0.1, 0], radius: "
+      "0.1}]";
+  for (const CollisionMode mode : {CollisionMode::Fcl, CollisionMode::RadiusAndFcl}) {
+    for (const SceneResult& s : run(clutter(20, "free_space", shape), 3, 50, mode)) {
+      ASSERT_TRUE(s.success) << s.message;
+      for (const ObjectPlacement& p : s.placements) {
+        EXPECT_LE(p.position.head<2>().norm(), 0.27 + 1e-12);
+        EXPECT_GE((p.position.head<2>() - Eigen::Vector2d(0.1, 0)).norm(), 0.13 - 1e-12);
+      }
+    }
+  }
+}
+
+TEST(FreeSpace, UnknownStrategyIsAnError) {
+  EXPECT_EQ(test::configError(
+                [] { test::buildFromYaml("samplers:\n  - {name: S, strategy: greedy}\n"); }),
+            "samplers[0].strategy: expected rejection, free_space or dense, got 'greedy'");
+}
+
+}  // namespace
+}  // namespace placement_samplers
