@@ -3,7 +3,6 @@
 #include <optional>
 
 #include "placement_samplers/sampling/region.hpp"
-#include "placement_samplers/sampling/sequential_composite_sampler.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 
 namespace placement_samplers {
@@ -14,42 +13,31 @@ struct Walker {
   const SceneResult& scene;
   std::vector<SamplerRegion> regions;
 
-  std::optional<Eigen::Vector3d> base(const UniformRandomSampler& s, const Reference& reference,
-                                      bool onTop) const {
-    switch (reference.kind) {
-      case Reference::Kind::Default:
-        return s.params().referencePos;
-      case Reference::Kind::Point:
-        return reference.point;
-      case Reference::Kind::Name:
-        break;
-    }
+  /// The named reference's entry in the scene: a request fixture or an earlier placement.
+  std::pair<const Eigen::Vector3d*, const ObjectModel*> find(const std::string& name) const {
     for (const FixtureSpec& f : request.fixtures) {
-      if (f.name == reference.name) {
-        return f.position + Eigen::Vector3d(0.0, 0.0, onTop ? f.object->topOffset.z() : 0.0);
+      if (f.name == name) {
+        return {&f.position, f.object.get()};
       }
     }
     for (const ObjectPlacement& p : scene.placements) {
-      if (p.name == reference.name) {
-        return p.position + Eigen::Vector3d(0.0, 0.0, onTop ? p.object->topOffset.z() : 0.0);
+      if (p.name == name) {
+        return {&p.position, p.object};
       }
     }
-    return std::nullopt;
+    return {nullptr, nullptr};
   }
 
-  void visit(const PlacementSampler& sampler, const Reference& reference, bool onTop) {
-    if (const auto* composite = dynamic_cast<const SequentialCompositeSampler*>(&sampler)) {
-      for (const auto& child : composite->children()) {
-        visit(*child.sampler, child.args.reference ? *child.args.reference : reference,
-              child.args.onTop ? *child.args.onTop : onTop);
-      }
+  void visit(const UniformRandomSampler& sampler, const Reference& reference, bool onTop) {
+    const UniformRandomSampler* uniform = &sampler;
+    if (uniform->params().hides) {
       return;
     }
-    const auto* uniform = dynamic_cast<const UniformRandomSampler*>(&sampler);
-    if (uniform == nullptr || uniform->params().hides) {
-      return;
-    }
-    const std::optional<Eigen::Vector3d> b = base(*uniform, reference, onTop);
+    const auto [position, object] =
+        reference.kind == Reference::Kind::Name
+            ? find(reference.name)
+            : std::pair<const Eigen::Vector3d*, const ObjectModel*>{nullptr, nullptr};
+    const std::optional<Eigen::Vector3d> b = uniform->base(reference, onTop, position, object);
     if (!b) {
       return;
     }
@@ -95,7 +83,11 @@ std::vector<SamplerRegion> samplerRegions(const PreparedRequest& request,
                                           const SceneResult& scene) {
   Walker walker{request, scene, {}};
   if (request.sampler != nullptr) {
-    walker.visit(*request.sampler, request.reference, request.onTop);
+    request.sampler->forEachUniform(
+        request.reference, request.onTop,
+        [&](const UniformRandomSampler& sampler, const Reference& reference, bool onTop) {
+          walker.visit(sampler, reference, onTop);
+        });
   }
   return walker.regions;
 }

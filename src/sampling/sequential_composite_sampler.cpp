@@ -85,16 +85,34 @@ void SequentialCompositeSampler::hide(const std::vector<ObjectPtr>& objects) {
   appendSampler(std::make_shared<UniformRandomSampler>(kHideSamplerName, params, objects), args);
 }
 
+namespace {
+
+/// A child's own sample_args, else what the composite was called with.
+const Reference& childReference(const SampleArgs& args, const Reference& reference) {
+  return args.reference ? *args.reference : reference;
+}
+
+bool childOnTop(const SampleArgs& args, bool onTop) { return args.onTop ? *args.onTop : onTop; }
+
+}  // namespace
+
 bool SequentialCompositeSampler::sample(SampleContext& context, const Reference& reference,
                                         bool onTop) const {
   for (const Child& child : children_) {
-    const Reference& r = child.args.reference ? *child.args.reference : reference;
-    const bool top = child.args.onTop ? *child.args.onTop : onTop;
-    if (!child.sampler->sample(context, r, top)) {
+    if (!child.sampler->sample(context, childReference(child.args, reference),
+                               childOnTop(child.args, onTop))) {
       return false;
     }
   }
   return true;
+}
+
+void SequentialCompositeSampler::forEachUniform(const Reference& reference, bool onTop,
+                                                const UniformVisitor& visit) const {
+  for (const Child& child : children_) {
+    child.sampler->forEachUniform(childReference(child.args, reference),
+                                  childOnTop(child.args, onTop), visit);
+  }
 }
 
 std::vector<ObjectPtr> SequentialCompositeSampler::objects() const {

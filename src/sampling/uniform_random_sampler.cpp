@@ -165,27 +165,47 @@ Eigen::Quaterniond UniformRandomSampler::sampleOrientation(Engine& engine,
          object.initOrientation;
 }
 
+std::optional<Eigen::Vector3d> UniformRandomSampler::base(const Reference& reference, bool onTop,
+                                                          const Eigen::Vector3d* namedPosition,
+                                                          const ObjectModel* namedObject) const {
+  switch (reference.kind) {
+    case Reference::Kind::Default:
+      return params_.referencePos;
+    case Reference::Kind::Point:
+      return reference.point;
+    case Reference::Kind::Name:
+      break;
+  }
+  if (namedPosition == nullptr) {
+    return std::nullopt;
+  }
+  Eigen::Vector3d b = *namedPosition;
+  if (onTop) {
+    b.z() += namedObject->topOffset.z();
+  }
+  return b;
+}
+
+void UniformRandomSampler::forEachUniform(const Reference& reference, bool onTop,
+                                          const UniformVisitor& visit) const {
+  visit(*this, reference, onTop);
+}
+
 bool UniformRandomSampler::sample(SampleContext& context, const Reference& reference,
                                   bool onTop) const {
-  Eigen::Vector3d base = params_.referencePos;
-  if (reference.kind == Reference::Kind::Point) {
-    base = reference.point;
-  } else if (reference.kind == Reference::Kind::Name) {
-    const PlacedEntry* ref = context.find(reference.name);
-    if (ref == nullptr) {
-      Failure failure;
-      failure.sampler = name();
-      failure.message = "sampler " + quoteText(name()) + ": reference " +
-                        quoteText(reference.name) +
-                        " is neither a fixture nor an object placed before this sampler";
-      context.fail(std::move(failure));
-      return false;
-    }
-    base = ref->position;
-    if (onTop) {
-      base.z() += ref->object->topOffset.z();
-    }
+  const PlacedEntry* ref =
+      reference.kind == Reference::Kind::Name ? context.find(reference.name) : nullptr;
+  const std::optional<Eigen::Vector3d> resolved =
+      this->base(reference, onTop, ref ? &ref->position : nullptr, ref ? ref->object : nullptr);
+  if (!resolved) {
+    Failure failure;
+    failure.sampler = name();
+    failure.message = "sampler " + quoteText(name()) + ": reference " + quoteText(reference.name) +
+                      " is neither a fixture nor an object placed before this sampler";
+    context.fail(std::move(failure));
+    return false;
   }
+  const Eigen::Vector3d& base = *resolved;
   if (params_.strategy == UniformSamplerParams::Strategy::FreeSpace) {
     return sampleFreeSpace(context, base, onTop);
   }

@@ -9,7 +9,6 @@
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
 #include "placement_samplers/sampling/sample_context.hpp"
-#include "placement_samplers/sampling/sequential_composite_sampler.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/text.hpp"
 #include "placement_samplers/validation/region_test.hpp"
@@ -62,7 +61,11 @@ class Validator {
     for (const FixtureSpec& f : request_.fixtures) {
       context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
     }
-    visit(*request_.sampler, request_.reference, request_.onTop);
+    request_.sampler->forEachUniform(
+        request_.reference, request_.onTop,
+        [this](const UniformRandomSampler& uniform, const Reference& reference, bool onTop) {
+          visit(uniform, reference, onTop);
+        });
     for (const ObjectVerdict& o : verdict.objects) {
       verdict.valid = verdict.valid && o.valid;
     }
@@ -82,31 +85,13 @@ class Validator {
     verdict.reasons.push_back(std::move(v));
   }
 
-  void visit(const PlacementSampler& sampler, const Reference& reference, bool onTop) {
-    if (const auto* composite = dynamic_cast<const SequentialCompositeSampler*>(&sampler)) {
-      for (const SequentialCompositeSampler::Child& child : composite->children()) {
-        visit(*child.sampler, child.args.reference ? *child.args.reference : reference,
-              child.args.onTop ? *child.args.onTop : onTop);
-      }
-      return;
-    }
-    const auto& uniform = dynamic_cast<const UniformRandomSampler&>(sampler);
-    // The base as UniformRandomSampler::sample() resolves it.
-    const UniformSamplerParams& params = uniform.params();
-    Eigen::Vector3d base = params.referencePos;
-    bool haveBase = true;
-    if (reference.kind == Reference::Kind::Point) {
-      base = reference.point;
-    } else if (reference.kind == Reference::Kind::Name) {
-      const PlacedEntry* ref = context_.find(reference.name);
-      haveBase = ref != nullptr;
-      if (ref != nullptr) {
-        base = ref->position;
-        base.z() += onTop ? ref->object->topOffset.z() : 0.0;
-      }
-    }
+  void visit(const UniformRandomSampler& uniform, const Reference& reference, bool onTop) {
+    const PlacedEntry* ref =
+        reference.kind == Reference::Kind::Name ? context_.find(reference.name) : nullptr;
+    const std::optional<Eigen::Vector3d> base =
+        uniform.base(reference, onTop, ref ? &ref->position : nullptr, ref ? ref->object : nullptr);
     for (const ObjectPtr& object : uniform.objects()) {
-      check(uniform, *object, haveBase ? &base : nullptr, reference, onTop);
+      check(uniform, *object, base ? &*base : nullptr, reference, onTop);
     }
   }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,6 +32,12 @@ struct SampleArgs {
   std::optional<bool> onTop;
 };
 
+class UniformRandomSampler;
+
+/// Called for each uniform sampler of a tree with the reference and on_top it runs with.
+using UniformVisitor = std::function<void(const UniformRandomSampler& sampler,
+                                          const Reference& reference, bool onTop)>;
+
 /// Base of the samplers: a name, and sample() over a context.
 class PlacementSampler {
  public:
@@ -57,6 +64,12 @@ class PlacementSampler {
   virtual const PlacementSampler* find(const std::string& name, SampleArgs* args) const;
   /// This sampler and every sampler below it, depth first in sampling order.
   virtual void collectSamplers(std::vector<const PlacementSampler*>& out) const;
+
+  /// Calls @p visit for every uniform sampler of this tree in sampling order, with the
+  /// reference and on_top that sample() would give it when called with @p reference and
+  /// @p onTop: the one walk for code that follows a scene's sampling (rviz regions, validation).
+  virtual void forEachUniform(const Reference& reference, bool onTop,
+                              const UniformVisitor& visit) const = 0;
 
  private:
   std::string name_;

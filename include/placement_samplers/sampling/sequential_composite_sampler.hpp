@@ -36,6 +36,8 @@ class SequentialCompositeSampler : public PlacementSampler {
   void hide(const std::vector<ObjectPtr>& objects);
 
   bool sample(SampleContext& context, const Reference& reference, bool onTop) const override;
+  void forEachUniform(const Reference& reference, bool onTop,
+                      const UniformVisitor& visit) const override;
   std::vector<ObjectPtr> objects() const override;
   /// Removes every object from every sub-sampler; the sub-samplers stay.
   void reset() override;

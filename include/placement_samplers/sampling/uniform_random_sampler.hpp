@@ -64,6 +64,16 @@ class UniformRandomSampler : public PlacementSampler {
   void addObjects(const std::vector<ObjectPtr>& objects);
 
   bool sample(SampleContext& context, const Reference& reference, bool onTop) const override;
+  void forEachUniform(const Reference& reference, bool onTop,
+                      const UniformVisitor& visit) const override;
+
+  /// The point the ranges are around for @p reference: reference_pos (the default), the
+  /// call's point, or the named reference's @p namedPosition, raised by its top when @p onTop
+  /// (robosuite's rule). std::nullopt for a name whose entry is not in the scene
+  /// (@p namedPosition null). Sampling, validation and rviz all resolve it here.
+  std::optional<Eigen::Vector3d> base(const Reference& reference, bool onTop,
+                                      const Eigen::Vector3d* namedPosition,
+                                      const ObjectModel* namedObject) const;
   std::vector<ObjectPtr> objects() const override;
   void reset() override;
 
