@@ -31,6 +31,7 @@
 #include "placement_samplers/sampling/sample_context.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/output/scene_json.hpp"
+#include "physics_bench.hpp"
 
 #ifndef PLACEMENT_SAMPLERS_CONFIG_DIR
 #define PLACEMENT_SAMPLERS_CONFIG_DIR "config"
@@ -727,7 +728,7 @@ void benchConfigFiles(const Options& options) {
 int usage(const char* self) {
   std::fprintf(stderr,
                "usage: %s [--config-dir DIR] [--quick] [--default-malloc] [--only "
-               "envs|blocks|clutter|strategies|fcl|batch]\n"
+               "envs|blocks|clutter|strategies|fcl|batch|physics]\n"
                "       %s [--quick] --config FILE [--config FILE ...]\n"
                "Times the samplers on fixed configurations and seeds and prints tables.\n"
                "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
@@ -759,7 +760,7 @@ int main(int argc, char** argv) {
     } else if (arg == "--only" && i + 1 < argc) {
       only = argv[++i];
       if (only != "envs" && only != "blocks" && only != "clutter" && only != "strategies" &&
-          only != "fcl" && only != "batch") {
+          only != "fcl" && only != "batch" && only != "physics") {
         return usage(argv[0]);
       }
     } else {
@@ -797,6 +798,9 @@ int main(int argc, char** argv) {
     }
     if (only.empty() || only == "batch") {
       benchBatch(options);
+    }
+    if (only.empty() || only == "physics") {
+      ps::benchmark::benchPhysics(options.configDir, options.repetitions);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "placement_benchmark: %s\n", e.what());

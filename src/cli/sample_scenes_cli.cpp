@@ -31,6 +31,7 @@ constexpr const char* kUsage =
     "usage: sample_scenes --config FILE [--seed S] [--scenes K] [--first-scene N]\n"
     "                     [--sampler NAME] [--collision-check radius|fcl|radius_and_fcl]\n"
     "                     [--max-attempts N] [--threads T] [--output FILE.npz]\n"
+    "                     [--physics none|check|settle]\n"
     "       sample_scenes --config FILE --describe\n"
     "       sample_scenes --config FILE --validate SCENES.jsonl|- [--height-tolerance M]\n"
     "                     [--sampler NAME] [--collision-check MODE]\n"
@@ -42,6 +43,8 @@ constexpr const char* kUsage =
     "configuration as JSON instead (derived radii and offsets, the sampler tree).\n"
     "--output writes the scenes into FILE.npz (numpy.load reads it: names, position,\n"
     "orientation, attempts, success, scene, seed) instead of printing them.\n"
+    "--physics simulates each placed scene in MuJoCo (default: the configuration's physics):\n"
+    "check adds stable, moved, turned and fallen; settle also gives the settled poses.\n"
     "--validate reads scenes in this tool's JSON lines (- = stdin) and prints one verdict\n"
     "per scene and line: each object inside its sampler's region, at its height (within M,\n"
     "default 0.005 m) and overlapping nothing under the check; exit 0 when all are valid.\n"
@@ -141,6 +144,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
   std::string configPath;
   std::string sampler;
   std::string mode;
+  std::string physics;
   bool haveSeed = false;
   std::uint64_t seed = 0;
   std::uint64_t scenes = 1;
@@ -167,7 +171,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
                                  flag == "--first-scene" || flag == "--sampler" ||
                                  flag == "--collision-check" || flag == "--max-attempts" ||
                                  flag == "--threads" || flag == "--output" ||
-                                 flag == "--validate" || flag == "--height-tolerance"
+                                 flag == "--validate" || flag == "--height-tolerance" ||
+                                 flag == "--physics"
                              ? flag + ": missing value"
                              : "unknown argument " + quoteText(flag));
       }
@@ -188,6 +193,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       } else if (flag == "--max-attempts") {
         maxAttempts = static_cast<std::uint32_t>(
             parseUnsigned(flag, value, std::numeric_limits<std::uint32_t>::max()));
+      } else if (flag == "--physics") {
+        physics = value;
       } else if (flag == "--validate") {
         validatePath = value;
       } else if (flag == "--height-tolerance") {
@@ -249,6 +256,17 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
         return 2;
       }
     }
+    if (!physics.empty()) {
+      ConfigNode node = ConfigNode::makeRoot();
+      node.add("physics").setString(physics);
+      try {
+        request.physics = parsePhysicsMode(node.at("physics"));
+      } catch (const ConfigError&) {
+        err << "sample_scenes: --physics: expected none, check or settle, got " << quoteText(physics)
+            << "\n";
+        return 2;
+      }
+    }
     const PreparedRequest prepared = generator.prepare(request);
     if (!haveSeed) {
       seed = generator.config().seed;
@@ -277,7 +295,9 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       for (const ObjectPtr& object : prepared.sampler->objects()) {
         names.push_back(object->name);
       }
-      npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed);
+      NpzOptions npzOptions;
+      npzOptions.physics = prepared.physics.mode;
+      npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed, npzOptions);
     }
     const FailureSummary failures =
         writeScenes(generator, prepared, seed, firstScene, scenes, threads, out, npz.get());

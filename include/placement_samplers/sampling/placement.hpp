@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "placement_samplers/geometry/object_model.hpp"
+#include "placement_samplers/physics/physics_settings.hpp"
 
 namespace placement_samplers {
 
@@ -57,6 +58,14 @@ struct SceneResult {
   bool success = false;
   std::string message;                      ///< empty on success
   std::vector<ObjectPlacement> placements;  ///< new placements in sampling order (no fixtures)
+
+  // Physics (README, "Physics"); ObjectPlacement stays as small as sampling needs it.
+  PhysicsMode physicsMode = PhysicsMode::None;  ///< the request's mode
+  bool simulated = false;  ///< the scene was simulated (placed, and a mode other than none)
+  bool stable = false;     ///< simulated, and no object moved, turned or fell too far
+  /// One per placement when simulated, else empty. With PhysicsMode::Settle the placements
+  /// hold the settled poses and these the sampled ones. Hidden objects: 0, 0, not fallen.
+  std::vector<PhysicsOutcome> physics;
 };
 
 }  // namespace placement_samplers

@@ -1,0 +1,408 @@
+// Physics (issue 15): MuJoCo's check and settling of sampled scenes, through the real builder
+// and SceneGenerator with small inline configurations.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/physics/physics_model.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
+#include "test_helpers.hpp"
+
+namespace placement_samplers {
+namespace {
+
+using test::buildFromYaml;
+using test::configError;
+using test::findPlacement;
+
+SceneResult sampleOne(const std::string& yaml, PhysicsMode mode, std::uint64_t seed = 1) {
+  const SceneGenerator generator(buildFromYaml(yaml));
+  SampleRequest request;
+  request.physics = mode;
+  return generator.sampleScene(generator.prepare(request), seed, 0);
+}
+
+const PhysicsOutcome& outcomeOf(const SceneResult& scene, const std::string& name) {
+  for (std::size_t i = 0; i < scene.placements.size(); ++i) {
+    if (scene.placements[i].name == name) {
+      return scene.physics.at(i);
+    }
+  }
+  throw std::invalid_argument("no placement " + name);
+}
+
+// A 4.2 cm cube sampled 1 cm above a table fixture, as robosuite's Lift does.
+const std::string kCubeOnTable = R"(
+objects:
+  table_top: {shape: box, size: [0.8, 0.8, 0.05]}
+  cube: {shape: box, size: [0.042, 0.042, 0.042]}
+fixtures:
+  - {name: table, object: table_top, position: [0, 0, 0.775]}
+samplers:
+  - name: CubeSampler
+    objects: [cube]
+    x_range: [-0.2, 0.2]
+    y_range: [-0.2, 0.2]
+    z_offset: 0.01
+    sample_args: {reference: table, on_top: true}
+)";
+
+TEST(Physics, CubeOnTableIsStableAndSettlesWithinAMillimetre) {
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const SceneResult scene = sampleOne(kCubeOnTable, PhysicsMode::Settle, seed);
+    ASSERT_TRUE(scene.success) << scene.message;
+    ASSERT_TRUE(scene.simulated);
+    EXPECT_TRUE(scene.stable);
+    const PhysicsOutcome& o = outcomeOf(scene, "cube");
+    EXPECT_LT(o.moved, 0.001);
+    EXPECT_LT(o.turned, 0.01);
+    EXPECT_FALSE(o.fallen);
+    // Sampled 1 cm above the table top (0.8): it lands on it.
+    EXPECT_NEAR(o.sampledPosition.z(), 0.8 + 0.01 + 0.021, 1e-12);
+    EXPECT_NEAR(scene.placements[0].position.z(), 0.8 + 0.021, 0.001);
+  }
+}
+
+TEST(Physics, SettleGivesSettledPosesAndKeepsTheSampledOnes) {
+  const SceneResult sampled = sampleOne(kCubeOnTable, PhysicsMode::None);
+  const SceneResult settled = sampleOne(kCubeOnTable, PhysicsMode::Settle);
+  const SceneResult checked = sampleOne(kCubeOnTable, PhysicsMode::Check);
+  ASSERT_TRUE(sampled.success && settled.success && checked.success);
+  const ObjectPlacement& s = sampled.placements[0];
+  const PhysicsOutcome& o = settled.physics[0];
+  // The sampled pose is kept bit for bit; the answer's pose is the settled one.
+  EXPECT_EQ(o.sampledPosition, s.position);
+  EXPECT_EQ(o.sampledOrientation.coeffs(), s.orientation.coeffs());
+  EXPECT_NE(settled.placements[0].position, s.position);
+  EXPECT_GT(s.position.z() - settled.placements[0].position.z(), 0.009);
+  // Check reports the same numbers but answers the sampled poses.
+  EXPECT_EQ(checked.placements[0].position, s.position);
+  EXPECT_EQ(checked.physics[0].moved, o.moved);
+  EXPECT_EQ(checked.physics[0].turned, o.turned);
+}
+
+TEST(Physics, BoxBalancedOnASphereIsUnstable) {
+  const SceneResult scene = sampleOne(R"(
+ground_z: 0
+objects:
+  ball: {shape: sphere, radius: 0.05}
+  box: {shape: box, size: [0.1, 0.1, 0.05]}
+samplers:
+  - {name: BallSampler, objects: [ball], rotation: 0, reference_pos: [0, 0, 0]}
+  - name: BoxSampler
+    objects: [box]
+    x_range: [0.005, 0.005]
+    rotation: 0
+    ensure_object_boundary_in_range: false
+    sample_args: {reference: ball, on_top: true}
+)",
+                                      PhysicsMode::Check);
+  ASSERT_TRUE(scene.success) << scene.message;
+  ASSERT_TRUE(scene.simulated);
+  EXPECT_FALSE(scene.stable);
+  const PhysicsOutcome& box = outcomeOf(scene, "box");
+  EXPECT_TRUE(box.moved > 0.01 || box.turned > 0.17) << box.moved << " " << box.turned;
+}
+
+TEST(Physics, TallThinBoxOnASmallTopTipsOver) {
+  const SceneResult scene = sampleOne(R"(
+ground_z: 0
+objects:
+  post: {shape: cylinder, radius: 0.01, length: 0.2}
+  stick: {shape: box, size: [0.03, 0.03, 0.3]}
+fixtures:
+  - {name: pillar, object: post, position: [0, 0, 0.1]}
+samplers:
+  - name: StickSampler
+    objects: [stick]
+    x_range: [0.013, 0.013]
+    rotation: 0
+    ensure_object_boundary_in_range: false
+    sample_args: {reference: pillar, on_top: true}
+)",
+                                      PhysicsMode::Settle);
+  ASSERT_TRUE(scene.success) << scene.message;
+  EXPECT_FALSE(scene.stable);
+  const PhysicsOutcome& stick = scene.physics[0];
+  EXPECT_GT(stick.turned, 0.5);
+  // Its centre is beyond the pillar's edge: it ends on the ground, lying.
+  EXPECT_LT(scene.placements[0].position.z(), 0.1);
+  EXPECT_FALSE(stick.fallen);  // the ground holds it
+}
+
+TEST(Physics, StackedMugStaysOnItsPlate) {
+  const std::string yaml = R"(
+objects:
+  table_top: {shape: box, size: [0.8, 0.8, 0.05]}
+  plate: {shape: cylinder, radius: 0.09, length: 0.02}
+  mug:
+    shapes:
+      - {shape: cylinder, radius: 0.04, length: 0.09}
+      - {shape: box, size: [0.03, 0.01, 0.05], position: [0.05, 0, 0]}
+fixtures:
+  - {name: table, object: table_top, position: [0, 0, 0.775]}
+samplers:
+  - name: PlateSampler
+    objects: [plate]
+    x_range: [-0.2, 0.2]
+    y_range: [-0.2, 0.2]
+    sample_args: {reference: table, on_top: true}
+  - name: MugSampler
+    objects: [mug]
+    x_range: [-0.02, 0.02]
+    y_range: [-0.02, 0.02]
+    ensure_object_boundary_in_range: false
+    ensure_valid_placement: false
+    sample_args: {reference: plate, on_top: true}
+)";
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const SceneResult scene = sampleOne(yaml, PhysicsMode::Settle, seed);
+    ASSERT_TRUE(scene.success) << scene.message;
+    EXPECT_TRUE(scene.stable) << "seed " << seed;
+    const ObjectPlacement* plate = findPlacement(scene.placements, "plate");
+    const ObjectPlacement* mug = findPlacement(scene.placements, "mug");
+    ASSERT_TRUE(plate != nullptr && mug != nullptr);
+    // The mug stands on the plate's top (0.8 + 0.02) where it was put.
+    EXPECT_NEAR(mug->position.z(), 0.82 + 0.045, 0.002);
+    EXPECT_LT((mug->position - plate->position).head<2>().norm(), 0.03);
+    EXPECT_LT(outcomeOf(scene, "mug").moved, 0.002);
+  }
+}
+
+TEST(Physics, ObjectWithNoSupportFalls) {
+  // Nothing at all to land on.
+  const SceneResult alone = sampleOne(R"(
+objects:
+  cube: {shape: box, size: [0.05, 0.05, 0.05]}
+samplers:
+  - {name: S, objects: [cube], reference_pos: [0, 0, 1]}
+)",
+                                      PhysicsMode::Check);
+  ASSERT_TRUE(alone.success);
+  EXPECT_FALSE(alone.stable);
+  EXPECT_TRUE(alone.physics[0].fallen);
+  EXPECT_GT(alone.physics[0].moved, 1.0);  // about g / 2 in one second
+  // A table, but the cube is put beside it: it falls past the table's bottom.
+  const SceneResult beside = sampleOne(R"(
+objects:
+  table_top: {shape: box, size: [0.8, 0.8, 0.05]}
+  cube: {shape: box, size: [0.05, 0.05, 0.05]}
+fixtures:
+  - {name: table, object: table_top, position: [0, 0, 0.775]}
+samplers:
+  - {name: S, objects: [cube], reference_pos: [1.0, 0, 0.8]}
+)",
+                                       PhysicsMode::Check);
+  ASSERT_TRUE(beside.success);
+  EXPECT_FALSE(beside.stable);
+  EXPECT_TRUE(beside.physics[0].fallen);
+}
+
+// Clutter that moves: cylinders dropped from a few centimetres, some on each other's edges.
+const std::string kPile = R"(
+ground_z: 0.8
+physics_seconds: 0.5
+objects:
+  a: {shape: cylinder, radius: 0.03, length: 0.1}
+  b: {shape: box, size: [0.05, 0.04, 0.12]}
+  c: {shape: sphere, radius: 0.03}
+  d: {shape: capsule, radius: 0.02, length: 0.06, density: 900}
+  e: {shape: box, size: [0.04, 0.04, 0.04]}
+  f: {shape: box, size: [0.06, 0.06, 0.02]}
+samplers:
+  - name: Pile
+    objects: [a, b, c, d, e, f]
+    x_range: [-0.06, 0.06]
+    y_range: [-0.06, 0.06]
+    rotation_axis: x
+    ensure_valid_placement: false
+    reference_pos: [0, 0, 0.8]
+    z_offset: 0.05
+hide: [f]
+)";
+
+TEST(Physics, SameSeedGivesTheSameSettledPosesOnAnyThreadCount) {
+  const SceneGenerator generator(buildFromYaml(kPile));
+  SampleRequest request;
+  request.physics = PhysicsMode::Settle;
+  const PreparedRequest prepared = generator.prepare(request);
+  const std::vector<SceneResult> one = generator.sampleScenes(prepared, 7, 12, 1);
+  const std::vector<SceneResult> two = generator.sampleScenes(prepared, 7, 12, 2);
+  // A second request: its own model, compiled again.
+  const std::vector<SceneResult> again =
+      generator.sampleSceneRange(generator.prepare(request), 7, 6, 6, 2);
+  bool anyMoved = false;
+  for (std::size_t s = 0; s < one.size(); ++s) {
+    ASSERT_TRUE(one[s].simulated);
+    test::expectSamePlacements(one[s].placements, two[s].placements);
+    EXPECT_EQ(one[s].stable, two[s].stable);
+    for (std::size_t i = 0; i < one[s].physics.size(); ++i) {
+      EXPECT_EQ(one[s].physics[i].moved, two[s].physics[i].moved);
+      EXPECT_EQ(one[s].physics[i].turned, two[s].physics[i].turned);
+      anyMoved = anyMoved || one[s].physics[i].moved > 0.01;
+    }
+    if (s >= 6) {
+      test::expectSamePlacements(one[s].placements, again[s - 6].placements);
+    }
+  }
+  EXPECT_TRUE(anyMoved);  // the pile really moves, so equality means something
+}
+
+TEST(Physics, HiddenObjectsAreNotSimulated) {
+  const SceneResult scene = sampleOne(kPile, PhysicsMode::Settle);
+  ASSERT_TRUE(scene.success);
+  const ObjectPlacement* f = findPlacement(scene.placements, "f");
+  ASSERT_NE(f, nullptr);
+  EXPECT_TRUE(f->hidden);
+  const PhysicsOutcome& o = outcomeOf(scene, "f");
+  EXPECT_EQ(o.moved, 0.0);
+  EXPECT_EQ(o.turned, 0.0);
+  EXPECT_FALSE(o.fallen);
+  EXPECT_EQ(o.sampledPosition, f->position);
+}
+
+TEST(Physics, MassFollowsTheDensity) {
+  const Shape cube = Shape::box(Eigen::Vector3d(0.1, 0.1, 0.1));
+  const ObjectModel object = makeObject("cube", {cube}, Eigen::Quaterniond::Identity());
+  PhysicsSettings settings;
+  const PhysicsModel model({}, {PhysicsBody{&object, 0.0, 500.0}, PhysicsBody{&object, 0.0, 2000.0}},
+                           settings);
+  EXPECT_NEAR(model.mass(0), 0.5, 1e-9);
+  EXPECT_NEAR(model.mass(1), 2.0, 1e-9);
+  // The configuration's density, and an object's own.
+  const std::shared_ptr<SceneConfig> config = buildFromYaml(kPile);
+  EXPECT_EQ(config->physics.density, 500.0);
+  EXPECT_EQ(config->findObject("d")->density, 900.0);
+  EXPECT_EQ(config->findObject("a")->density, 0.0);
+}
+
+TEST(Physics, RetryDrawsAgainReproduciblyAndBounded) {
+  // A stick stood on a pillar's top (r = 3 cm) anywhere within 4.5 cm of its axis: it stands
+  // when its centre is over the top (about a third of the draws), else it falls off.
+  const std::string yaml = R"(
+ground_z: 0
+physics_retry: true
+physics_max_draws: 4
+objects:
+  post: {shape: cylinder, radius: 0.03, length: 0.2}
+  stick: {shape: box, size: [0.02, 0.02, 0.1]}
+fixtures:
+  - {name: pillar, object: post, position: [0, 0, 0.1]}
+samplers:
+  - name: StickSampler
+    objects: [stick]
+    x_range: [-0.045, 0.045]
+    y_range: [-0.045, 0.045]
+    ensure_object_boundary_in_range: false
+    ensure_valid_placement: false
+    sample_args: {reference: pillar, on_top: true}
+)";
+  const SceneGenerator generator(buildFromYaml(yaml));
+  SampleRequest request;
+  request.physics = PhysicsMode::Check;
+  const PreparedRequest prepared = generator.prepare(request);
+  const std::vector<SceneResult> one = generator.sampleScenes(prepared, 3, 20, 1);
+  const std::vector<SceneResult> two = generator.sampleScenes(prepared, 3, 20, 2);
+  const SceneGenerator plain(buildFromYaml(yaml));
+  std::size_t failed = 0;
+  std::size_t redrawn = 0;
+  for (std::size_t s = 0; s < one.size(); ++s) {
+    test::expectSamePlacements(one[s].placements, two[s].placements);
+    EXPECT_EQ(one[s].success, two[s].success);
+    EXPECT_EQ(one[s].message, two[s].message);
+    if (one[s].success) {
+      EXPECT_TRUE(one[s].stable);  // with retry, a placed scene is a stable one
+    } else {
+      ++failed;
+      EXPECT_EQ(one[s].message.rfind("physics: no stable scene in 4 draws; in the last, 'stick' moved",
+                                     0),
+                0u)
+          << one[s].message;
+    }
+    // A redrawn scene is not the first draw: the stream went on.
+    const SceneResult first = plain.sampleScene(plain.prepare(SampleRequest()), 3, s);
+    redrawn += one[s].placements[0].position != first.placements[0].position ? 1 : 0;
+  }
+  EXPECT_GT(redrawn, 0u);
+  EXPECT_LT(failed, one.size());
+}
+
+TEST(Physics, NoneLeavesResultsUntouched) {
+  const std::string withKeys = "physics: none\nphysics_seconds: 2\ndensity: 800\n" + kCubeOnTable;
+  const SceneGenerator plain(buildFromYaml(kCubeOnTable));
+  const SceneGenerator keyed(buildFromYaml(withKeys));
+  const std::vector<SceneResult> a = plain.sampleScenes(plain.prepare(SampleRequest()), 5, 50, 2);
+  const std::vector<SceneResult> b = keyed.sampleScenes(keyed.prepare(SampleRequest()), 5, 50, 2);
+  for (std::size_t s = 0; s < a.size(); ++s) {
+    test::expectSamePlacements(a[s].placements, b[s].placements);
+    EXPECT_FALSE(b[s].simulated);
+    EXPECT_FALSE(b[s].stable);
+    EXPECT_TRUE(b[s].physics.empty());
+    EXPECT_EQ(b[s].physicsMode, PhysicsMode::None);
+  }
+  // A request's mode wins over the configuration's.
+  const SceneGenerator checking(buildFromYaml("physics: check\n" + kCubeOnTable));
+  SampleRequest none;
+  none.physics = PhysicsMode::None;
+  EXPECT_FALSE(checking.sampleScene(checking.prepare(none), 5, 0).simulated);
+  EXPECT_TRUE(checking.sampleScene(checking.prepare(SampleRequest()), 5, 0).simulated);
+}
+
+TEST(Physics, FailedScenesAreNotSimulated) {
+  const SceneResult scene = sampleOne(R"(
+ground_z: 0
+max_attempts: 3
+objects:
+  big: {shape: box, size: [0.5, 0.5, 0.1]}
+  other: {shape: box, size: [0.5, 0.5, 0.1]}
+samplers:
+  - {name: S, objects: [big, other], ensure_object_boundary_in_range: false}
+)",
+                                      PhysicsMode::Check);
+  EXPECT_FALSE(scene.success);
+  EXPECT_FALSE(scene.simulated);
+  EXPECT_FALSE(scene.stable);
+  EXPECT_TRUE(scene.physics.empty());
+}
+
+TEST(Physics, BadParametersAreConfigurationErrors) {
+  const std::string objects = "objects: {cube: {shape: box, size: [0.1, 0.1, 0.1]}}\n";
+  const auto error = [&](const std::string& line) {
+    return configError([&] { buildFromYaml(line + "\n" + objects); });
+  };
+  EXPECT_EQ(error("physics_seconds: -1"),
+            "physics_seconds: expected a positive duration [s] of at most 60, got -1");
+  EXPECT_EQ(error("physics_seconds: 0"),
+            "physics_seconds: expected a positive duration [s] of at most 60, got 0");
+  EXPECT_EQ(error("physics_seconds: 1000"),
+            "physics_seconds: expected a positive duration [s] of at most 60, got 1000");
+  EXPECT_EQ(error("physics_position_tolerance: .nan"),
+            "physics_position_tolerance: expected a finite number, got a number (nan)");
+  EXPECT_EQ(error("physics_rotation_tolerance: .inf"),
+            "physics_rotation_tolerance: expected a finite number, got a number (inf)");
+  EXPECT_EQ(error("physics_rotation_tolerance: 4"),
+            "physics_rotation_tolerance: expected a positive angle [rad] of at most 3.14159, got 4");
+  EXPECT_EQ(error("physics_timestep: 0.00001"),
+            "physics_timestep: expected a time step [s] of at least 0.0001, got 1e-05");
+  EXPECT_EQ(error("physics_timestep: 0.05\nphysics_seconds: 0.01"),
+            "physics_timestep: expected a time step [s] no longer than physics_seconds (0.01), "
+            "got 0.05");
+  EXPECT_EQ(error("physics: wobble"),
+            "physics: expected none, check or settle, got 'wobble'");
+  EXPECT_EQ(error("physics_max_draws: 0"),
+            "physics_max_draws: expected an integer in [1, 1000], got 0");
+  EXPECT_EQ(error("density: -5"),
+            "density: expected a positive density [kg/m^3] of at most 100000, got -5");
+  EXPECT_EQ(error("ground_z: .nan"), "ground_z: expected a finite number, got a number (nan)");
+  EXPECT_EQ(configError([] {
+              buildFromYaml("objects: {cube: {shape: box, size: [0.1, 0.1, 0.1], density: 0}}");
+            }),
+            "objects.cube.density: expected a positive density [kg/m^3] of at most 100000, got 0");
+}
+
+}  // namespace
+}  // namespace placement_samplers
