@@ -140,7 +140,9 @@ std::string physicsMjcf(const std::vector<PhysicsFixture>& fixtures,
   std::string out = "<mujoco model=\"placement_samplers_scene\">\n";
   out += "  <compiler angle=\"radian\"/>\n  <option";
   appendAttribute(out, "timestep", &settings.timestep, 1);
-  out += "/>\n  <size nconmax=\"" + std::to_string(contacts) + "\" njmax=\"" +
+  // Several contact points between flat faces of convex shapes (a cylinder or a mesh on a
+  // box): with one, as by default, a plate on a table rocks and rolls away.
+  out += ">\n    <flag multiccd=\"enable\"/>\n  </option>\n  <size nconmax=\"" + std::to_string(contacts) + "\" njmax=\"" +
          std::to_string(4 * contacts) + "\"/>\n";
   if (!assets.empty()) {
     out += "  <asset>\n" + assets + "  </asset>\n";

@@ -95,7 +95,7 @@ TEST(PhysicsConfig, BadParametersAreConfigurationErrors) {
   EXPECT_EQ(error("physics: wobble"),
             "physics: expected none, check or settle, got 'wobble'");
   EXPECT_EQ(error("physics_max_draws: 0"),
-            "physics_max_draws: expected an integer in [1, 1000], got 0");
+            "physics_max_draws: expected an integer in [1, 1000], got an integer (0)");
   EXPECT_EQ(error("density: -5"),
             "density: expected a positive density [kg/m^3] of at most 100000, got -5");
   EXPECT_EQ(error("ground_z: .nan"), "ground_z: expected a finite number, got a number (nan)");

@@ -91,12 +91,16 @@ objects:
   ball: {shape: sphere, radius: 0.05}
   box: {shape: box, size: [0.1, 0.1, 0.05]}
 samplers:
-  - {name: BallSampler, objects: [ball], rotation: 0, reference_pos: [0, 0, 0]}
+  - name: BallSampler
+    objects: [ball]
+    rotation: 0
+    ensure_object_boundary_in_range: false
   - name: BoxSampler
     objects: [box]
     x_range: [0.005, 0.005]
     rotation: 0
     ensure_object_boundary_in_range: false
+    ensure_valid_placement: false
     sample_args: {reference: ball, on_top: true}
 )",
                                       PhysicsMode::Check);
@@ -121,6 +125,7 @@ samplers:
     x_range: [0.013, 0.013]
     rotation: 0
     ensure_object_boundary_in_range: false
+    ensure_valid_placement: false
     sample_args: {reference: pillar, on_top: true}
 )",
                                       PhysicsMode::Settle);
@@ -178,7 +183,7 @@ TEST(Physics, ObjectWithNoSupportFalls) {
 objects:
   cube: {shape: box, size: [0.05, 0.05, 0.05]}
 samplers:
-  - {name: S, objects: [cube], reference_pos: [0, 0, 1]}
+  - {name: S, objects: [cube], reference_pos: [0, 0, 1], ensure_object_boundary_in_range: false}
 )",
                                       PhysicsMode::Check);
   ASSERT_TRUE(alone.success);
@@ -193,7 +198,10 @@ objects:
 fixtures:
   - {name: table, object: table_top, position: [0, 0, 0.775]}
 samplers:
-  - {name: S, objects: [cube], reference_pos: [1.0, 0, 0.8]}
+  - name: S
+    objects: [cube]
+    reference_pos: [1.0, 0, 0.8]
+    ensure_object_boundary_in_range: false
 )",
                                        PhysicsMode::Check);
   ASSERT_TRUE(beside.success);
