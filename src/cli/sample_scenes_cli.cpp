@@ -167,14 +167,13 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
         continue;
       }
       if (i + 1 >= args.size()) {
-        throw UsageError(flag == "--config" || flag == "--seed" || flag == "--scenes" ||
-                                 flag == "--first-scene" || flag == "--sampler" ||
-                                 flag == "--collision-check" || flag == "--max-attempts" ||
-                                 flag == "--threads" || flag == "--output" ||
-                                 flag == "--validate" || flag == "--height-tolerance" ||
-                                 flag == "--physics"
-                             ? flag + ": missing value"
-                             : "unknown argument " + quoteText(flag));
+        throw UsageError(
+            flag == "--config" || flag == "--seed" || flag == "--scenes" ||
+                    flag == "--first-scene" || flag == "--sampler" || flag == "--collision-check" ||
+                    flag == "--max-attempts" || flag == "--threads" || flag == "--output" ||
+                    flag == "--validate" || flag == "--height-tolerance" || flag == "--physics"
+                ? flag + ": missing value"
+                : "unknown argument " + quoteText(flag));
       }
       const std::string& value = args[++i];
       if (flag == "--config") {
@@ -262,8 +261,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       try {
         request.physics = parsePhysicsMode(node.at("physics"));
       } catch (const ConfigError&) {
-        err << "sample_scenes: --physics: expected none, check or settle, got " << quoteText(physics)
-            << "\n";
+        err << "sample_scenes: --physics: expected none, check or settle, got "
+            << quoteText(physics) << "\n";
         return 2;
       }
     }

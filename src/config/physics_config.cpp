@@ -77,8 +77,8 @@ void readPhysicsSettings(const ConfigNode& root, PhysicsSettings& physics) {
     const double z = n->asDouble();
     if (!(std::abs(z) <= limits::kCoordinate)) {
       std::ostringstream out;
-      out << "expected a height [m] within [-" << limits::kCoordinate << ", "
-          << limits::kCoordinate << "], got " << z;
+      out << "expected a height [m] within [-" << limits::kCoordinate << ", " << limits::kCoordinate
+          << "], got " << z;
       n->fail(out.str());
     }
     physics.groundZ = z;

@@ -37,10 +37,19 @@ enum Member {
   kSampledOrientation,
   kMembers
 };
-constexpr const char* kMemberNames[kMembers] = {
-    "names.npy",  "position.npy", "orientation.npy", "attempts.npy",         "success.npy",
-    "scene.npy",  "seed.npy",     "stable.npy",      "moved.npy",            "turned.npy",
-    "fallen.npy", "sampled_position.npy",            "sampled_orientation.npy"};
+constexpr const char* kMemberNames[kMembers] = {"names.npy",
+                                                "position.npy",
+                                                "orientation.npy",
+                                                "attempts.npy",
+                                                "success.npy",
+                                                "scene.npy",
+                                                "seed.npy",
+                                                "stable.npy",
+                                                "moved.npy",
+                                                "turned.npy",
+                                                "fallen.npy",
+                                                "sampled_position.npy",
+                                                "sampled_orientation.npy"};
 
 }  // namespace
 
@@ -56,8 +65,8 @@ struct NpzWriter::Impl {
   std::vector<std::string> names;
   std::unordered_map<std::string, std::size_t> columns;
   PhysicsMode physics = PhysicsMode::None;
-  std::vector<npz::ZipMember> members;  // the file's members, in order
-  int slot[kMembers] = {};              // each member's index in members, -1 when left out
+  std::vector<npz::ZipMember> members;       // the file's members, in order
+  int slot[kMembers] = {};                   // each member's index in members, -1 when left out
   std::uint64_t arrayOffset[kMembers] = {};  // where each member's array starts (after .npy header)
   std::uint64_t directoryOffset = 0;
   std::uint64_t fileSize = 0;
@@ -192,7 +201,7 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   payload[kSampledOrientation] = payload[kOrientation];
 
   d.physics = options.physics;
-  const int used = options.physics == PhysicsMode::None     ? kStable
+  const int used = options.physics == PhysicsMode::None    ? kStable
                    : options.physics == PhysicsMode::Check ? kSampledPosition
                                                            : kMembers;
   for (int m = 0; m < kMembers; ++m) {

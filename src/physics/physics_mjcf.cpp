@@ -57,8 +57,8 @@ class MeshAssets {
 };
 
 /// One geom of @p shape at @p pose (in its body's frame); @p density < 0: static, none given.
-void appendGeom(std::string& out, const Shape& shape, const Eigen::Isometry3d& pose,
-                double density, MeshAssets& meshes, std::string& assets, const char* indent) {
+void appendGeom(std::string& out, const Shape& shape, const Eigen::Isometry3d& pose, double density,
+                MeshAssets& meshes, std::string& assets, const char* indent) {
   out += indent;
   out += "<geom";
   double size[3] = {0.0, 0.0, 0.0};
@@ -142,8 +142,8 @@ std::string physicsMjcf(const std::vector<PhysicsFixture>& fixtures,
   appendAttribute(out, "timestep", &settings.timestep, 1);
   // Several contact points between flat faces of convex shapes (a cylinder or a mesh on a
   // box): with one, as by default, a plate on a table rocks and rolls away.
-  out += ">\n    <flag multiccd=\"enable\"/>\n  </option>\n  <size nconmax=\"" + std::to_string(contacts) + "\" njmax=\"" +
-         std::to_string(4 * contacts) + "\"/>\n";
+  out += ">\n    <flag multiccd=\"enable\"/>\n  </option>\n  <size nconmax=\"" +
+         std::to_string(contacts) + "\" njmax=\"" + std::to_string(4 * contacts) + "\"/>\n";
   if (!assets.empty()) {
     out += "  <asset>\n" + assets + "  </asset>\n";
   }

@@ -97,9 +97,9 @@ double angleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
 
 }  // namespace
 
-PhysicsStatus PhysicsWorld::simulate(std::vector<BodyPose>& poses,
-                                     std::vector<PhysicsOutcome>& outcomes,
-                                     std::optional<std::chrono::steady_clock::time_point> deadline) {
+PhysicsStatus PhysicsWorld::simulate(
+    std::vector<BodyPose>& poses, std::vector<PhysicsOutcome>& outcomes,
+    std::optional<std::chrono::steady_clock::time_point> deadline) {
   const PhysicsModel::Impl& model = *impl_->model->impl_;
   const mjModel* m = model.model.get();
   mjData* d = impl_->data.get();
@@ -149,8 +149,7 @@ PhysicsStatus PhysicsWorld::simulate(std::vector<BodyPose>& poses,
   for (std::size_t i = 0; i < n; ++i) {
     const mjtNum* q = d->qpos + model.qposAddress[i];
     const Eigen::Vector3d position(q[0], q[1], q[2]);
-    const Eigen::Quaterniond orientation =
-        Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized();
+    const Eigen::Quaterniond orientation = Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized();
     PhysicsOutcome& o = outcomes[i];
     const PhysicsBody& body = model.bodies[i];
     o.sampledPosition = poses[i].position;

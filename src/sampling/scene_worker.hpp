@@ -130,7 +130,7 @@ class SceneGenerator::Worker {
   std::array<Engine, kChunk> chunkEngines_;
   std::unique_ptr<CollisionChecker> checker_;
   SampleContext context_;
-  std::size_t objects_;  ///< objects the sampler places
+  std::size_t objects_;                   ///< objects the sampler places
   std::unique_ptr<PhysicsStep> physics_;  ///< none when the request's physics is none
 };
 

@@ -431,8 +431,7 @@ TEST_F(PlacementServerTest, PhysicsSettleReturnsSettledScenes) {
   bool same = false;
   while (!same && ros::WallTime::now() < until) {
     try {
-      const auto t =
-          buffer.lookupTransform("world", "test/cube", ros::Time(0), ros::Duration(1.0));
+      const auto t = buffer.lookupTransform("world", "test/cube", ros::Time(0), ros::Duration(1.0));
       same = t.transform.translation.z == cube.pose.position.z;
     } catch (const tf2::TransformException&) {
     }

@@ -36,8 +36,8 @@ TEST(PhysicsConfig, MassFollowsTheDensity) {
   const Shape cube = Shape::box(Eigen::Vector3d(0.1, 0.1, 0.1));
   const ObjectModel object = makeObject("cube", {cube}, Eigen::Quaterniond::Identity());
   PhysicsSettings settings;
-  const PhysicsModel model({}, {PhysicsBody{&object, 0.0, 500.0}, PhysicsBody{&object, 0.0, 2000.0}},
-                           settings);
+  const PhysicsModel model(
+      {}, {PhysicsBody{&object, 0.0, 500.0}, PhysicsBody{&object, 0.0, 2000.0}}, settings);
   EXPECT_NEAR(model.mass(0), 0.5, 1e-9);
   EXPECT_NEAR(model.mass(1), 2.0, 1e-9);
   // The configuration's density, and an object's own.
@@ -46,7 +46,6 @@ TEST(PhysicsConfig, MassFollowsTheDensity) {
   EXPECT_EQ(config->findObject("cube")->density, 900.0);
   EXPECT_EQ(config->findObject("table_top")->density, 0.0);
 }
-
 
 TEST(PhysicsConfig, NoneLeavesResultsUntouched) {
   const std::string withKeys = "physics: none\nphysics_seconds: 2\ndensity: 800\n" + kCubeOnTable;
@@ -69,7 +68,6 @@ TEST(PhysicsConfig, NoneLeavesResultsUntouched) {
   EXPECT_TRUE(checking.sampleScene(checking.prepare(SampleRequest()), 5, 0).simulated);
 }
 
-
 TEST(PhysicsConfig, BadParametersAreConfigurationErrors) {
   const std::string objects = "objects: {cube: {shape: box, size: [0.1, 0.1, 0.1]}}\n";
   const auto error = [&](const std::string& line) {
@@ -85,15 +83,15 @@ TEST(PhysicsConfig, BadParametersAreConfigurationErrors) {
             "physics_position_tolerance: expected a finite number, got a number (nan)");
   EXPECT_EQ(error("physics_rotation_tolerance: .inf"),
             "physics_rotation_tolerance: expected a finite number, got a number (inf)");
-  EXPECT_EQ(error("physics_rotation_tolerance: 4"),
-            "physics_rotation_tolerance: expected a positive angle [rad] of at most 3.14159, got 4");
+  EXPECT_EQ(
+      error("physics_rotation_tolerance: 4"),
+      "physics_rotation_tolerance: expected a positive angle [rad] of at most 3.14159, got 4");
   EXPECT_EQ(error("physics_timestep: 0.00001"),
             "physics_timestep: expected a time step [s] of at least 0.0001, got 1e-05");
   EXPECT_EQ(error("physics_timestep: 0.05\nphysics_seconds: 0.01"),
             "physics_timestep: expected a time step [s] no longer than physics_seconds (0.01), "
             "got 0.05");
-  EXPECT_EQ(error("physics: wobble"),
-            "physics: expected none, check or settle, got 'wobble'");
+  EXPECT_EQ(error("physics: wobble"), "physics: expected none, check or settle, got 'wobble'");
   EXPECT_EQ(error("physics_max_draws: 0"),
             "physics_max_draws: expected an integer in [1, 1000], got an integer (0)");
   EXPECT_EQ(error("density: -5"),

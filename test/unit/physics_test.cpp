@@ -317,8 +317,8 @@ samplers:
       EXPECT_TRUE(one[s].stable);  // with retry, a placed scene is a stable one
     } else {
       ++failed;
-      EXPECT_EQ(one[s].message.rfind("physics: no stable scene in 4 draws; in the last, 'stick' moved",
-                                     0),
+      EXPECT_EQ(one[s].message.rfind(
+                    "physics: no stable scene in 4 draws; in the last, 'stick' moved", 0),
                 0u)
           << one[s].message;
     }

@@ -15,7 +15,7 @@ namespace placement_samplers {
 
 /// A static part of the simulated scene: a fixture at its pose.
 struct PhysicsFixture {
-  const ObjectModel* object = nullptr;  ///< its geometry
+  const ObjectModel* object = nullptr;                 ///< its geometry
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< [m]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
 };

@@ -20,14 +20,14 @@ const char* physicsModeName(PhysicsMode mode);
 /// The configuration's physics keys (top level, and `density` per object).
 struct PhysicsSettings {
   PhysicsMode mode = PhysicsMode::None;
-  double seconds = 1.0;               ///< simulated time per scene [s]
-  double timestep = 0.002;            ///< MuJoCo's time step [s]
-  double positionTolerance = 0.01;    ///< a stable object moves less [m]
-  double rotationTolerance = 0.17;    ///< and turns less [rad]
-  bool retry = false;                 ///< an unstable scene is drawn again
-  std::uint32_t maxDraws = 10;        ///< draws of a scene in all, with retry
-  std::optional<double> groundZ;      ///< an infinite plane at this height [m]; unset = none
-  double density = 500.0;             ///< of objects that set none [kg/m^3]
+  double seconds = 1.0;             ///< simulated time per scene [s]
+  double timestep = 0.002;          ///< MuJoCo's time step [s]
+  double positionTolerance = 0.01;  ///< a stable object moves less [m]
+  double rotationTolerance = 0.17;  ///< and turns less [rad]
+  bool retry = false;               ///< an unstable scene is drawn again
+  std::uint32_t maxDraws = 10;      ///< draws of a scene in all, with retry
+  std::optional<double> groundZ;    ///< an infinite plane at this height [m]; unset = none
+  double density = 500.0;           ///< of objects that set none [kg/m^3]
 
   /// Steps per scene: seconds / timestep, rounded, at least one.
   std::uint64_t steps() const;
