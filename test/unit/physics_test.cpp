@@ -154,6 +154,7 @@ samplers:
     objects: [plate]
     x_range: [-0.2, 0.2]
     y_range: [-0.2, 0.2]
+    z_offset: 0.01
     sample_args: {reference: table, on_top: true}
   - name: MugSampler
     objects: [mug]
@@ -173,7 +174,9 @@ samplers:
     // The mug stands on the plate's top (0.8 + 0.02) where it was put.
     EXPECT_NEAR(mug->position.z(), 0.82 + 0.045, 0.002);
     EXPECT_LT((mug->position - plate->position).head<2>().norm(), 0.03);
+    // It dropped 1 cm with the plate, lifted by its z_offset: no motion of its own.
     EXPECT_LT(outcomeOf(scene, "mug").moved, 0.002);
+    EXPECT_GT(outcomeOf(scene, "mug").sampledPosition.z() - mug->position.z(), 0.009);
   }
 }
 

@@ -23,7 +23,9 @@ struct PhysicsFixture {
 /// A free body of the simulated scene: an object the request's sampler places.
 struct PhysicsBody {
   const ObjectModel* object = nullptr;  ///< its geometry (every shape of it)
-  double zOffset = 0.0;                 ///< its sampler's z_offset [m]
+  /// The clearance it is sampled with on purpose [m]: its sampler's z_offset (plus, for an
+  /// object stacked on a placed one, that one's); "moved" does not count it.
+  double zOffset = 0.0;
   double density = 500.0;               ///< [kg/m^3]
 };
 

@@ -36,7 +36,8 @@ struct PhysicsSettings {
 /// What the simulation did to one placed object.
 struct PhysicsOutcome {
   /// Distance between the settled position and the sampled one lowered by its sampler's
-  /// z_offset (the clearance robosuite asks for on purpose) [m].
+  /// z_offset (the clearance robosuite asks for on purpose), plus the z_offset of the placed
+  /// object it is stacked on, if any [m].
   double moved = 0.0;
   double turned = 0.0;  ///< angle of the rotation from the sampled to the settled orientation [rad]
   bool fallen = false;  ///< its lowest point ended below the lowest support
