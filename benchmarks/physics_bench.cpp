@@ -88,8 +88,9 @@ void benchPhysics(const std::string& configDir, int repetitions) {
       settings.seconds, settings.timestep, repetitions, std::thread::hardware_concurrency());
   std::printf("%s\n", std::string(100, '-').c_str());
   std::printf("model build (MJCF text + MuJoCo compile) [ms]   %10.3f\n", medianOf(build));
-  std::printf("one scene, sampled and settled, 1 thread [ms]   %10.3f  (model and data reused)\n",
-              medianOf(one));
+  std::printf(
+      "one scene, sampled and settled, 1 thread [ms]   %10.3f  (sampleScene: model reused)\n",
+      medianOf(one));
   std::printf("batch of %llu, 1 thread [ms per scene]          %10.3f  (model built in the call)\n",
               static_cast<unsigned long long>(kScenes), medianOf(batch[0]));
   std::printf("batch of %llu, 2 threads [ms per scene]         %10.3f  speed-up %.2f\n",

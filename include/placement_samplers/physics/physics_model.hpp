@@ -26,7 +26,7 @@ struct PhysicsBody {
   /// The clearance it is sampled with on purpose [m]: its sampler's z_offset (plus, for an
   /// object stacked on a placed one, that one's); "moved" does not count it.
   double zOffset = 0.0;
-  double density = 500.0;               ///< [kg/m^3]
+  double density = 500.0;  ///< [kg/m^3]
 };
 
 /// A pose of a body's frame (the object's origin) [m].
