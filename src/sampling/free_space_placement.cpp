@@ -176,21 +176,14 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     candidate.position.z() = z;
     bool placed = false;
     for (std::uint32_t attempt = 1; attempt <= limit && !placed; ++attempt) {
-      if (cells.empty() || ((attempt & 1023u) == 0 && context.expired())) {
-        Failure failure;
-        failure.object = object.name;
-        failure.sampler = name();
-        failure.attempts = attempt - 1;
-        failure.message =
-            cells.empty()
-                ? "could not place object " + quoteText(object.name) + " with sampler " +
-                      quoteText(name()) + ": no free position is left (strategy free_space, " +
-                      std::to_string(attempt - 1) + " attempts)"
-                : "stopped placing object " + quoteText(object.name) + " with sampler " +
-                      quoteText(name()) + " after " + std::to_string(attempt - 1) +
-                      " attempts: the request ran out of time";
-        context.fail(std::move(failure));
-        return false;
+      if (cells.empty()) {
+        return fail(context, &object, attempt - 1,
+                    "could not place object " + quoteText(object.name) + " with sampler " +
+                        quoteText(name()) + ": no free position is left (strategy free_space, " +
+                        std::to_string(attempt - 1) + " attempts)");
+      }
+      if ((attempt & 1023u) == 0 && context.expired()) {
+        return failOutOfTime(context, object, attempt - 1);
       }
       int level = 0;
       std::size_t index = 0;

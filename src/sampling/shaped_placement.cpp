@@ -75,15 +75,7 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
   candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
     if ((attempt & 1023u) == 0 && context.expired()) {
-      Failure failure;
-      failure.object = object.name;
-      failure.sampler = name();
-      failure.attempts = attempt - 1;
-      failure.message = "stopped placing object " + quoteText(object.name) + " with sampler " +
-                        quoteText(name()) + " after " + std::to_string(attempt - 1) +
-                        " attempts: the request ran out of time";
-      context.fail(std::move(failure));
-      return false;
+      return failOutOfTime(context, object, attempt - 1);
     }
     const Eigen::Vector2d local = entry.draw->draw(engine);
     candidate.position.head<2>() = local + offset;

@@ -198,12 +198,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
   const std::optional<Eigen::Vector3d> resolved =
       this->base(reference, onTop, ref ? &ref->position : nullptr, ref ? ref->object : nullptr);
   if (!resolved) {
-    Failure failure;
-    failure.sampler = name();
-    failure.message = "sampler " + quoteText(name()) + ": reference " + quoteText(reference.name) +
-                      " is neither a fixture nor an object placed before this sampler";
-    context.fail(std::move(failure));
-    return false;
+    return fail(context, nullptr, 0,
+                "sampler " + quoteText(name()) + ": reference " + quoteText(reference.name) +
+                    " is neither a fixture nor an object placed before this sampler");
   }
   const Eigen::Vector3d& base = *resolved;
   if (params_.strategy == UniformSamplerParams::Strategy::FreeSpace) {
@@ -242,15 +239,7 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
   candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
     if ((attempt & 1023u) == 0 && context.expired()) {
-      Failure failure;
-      failure.object = object.name;
-      failure.sampler = name();
-      failure.attempts = attempt - 1;
-      failure.message = "stopped placing object " + quoteText(object.name) + " with sampler " +
-                        quoteText(name()) + " after " + std::to_string(attempt - 1) +
-                        " attempts: the request ran out of time";
-      context.fail(std::move(failure));
-      return false;
+      return failOutOfTime(context, object, attempt - 1);
     }
     candidate.position.x() = uniform(engine, entry.x[0], entry.x[1]) + base.x();
     candidate.position.y() = uniform(engine, entry.y[0], entry.y[1]) + base.y();
@@ -275,6 +264,27 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
   }
 
   return failPlacement(context, object, limit, counts, 0);
+}
+
+bool UniformRandomSampler::fail(SampleContext& context, const ObjectModel* object,
+                                std::uint32_t attempts, std::string message) const {
+  Failure failure;
+  if (object != nullptr) {
+    failure.object = object->name;
+  }
+  failure.sampler = name();
+  failure.attempts = attempts;
+  failure.message = std::move(message);
+  context.fail(std::move(failure));
+  return false;
+}
+
+bool UniformRandomSampler::failOutOfTime(SampleContext& context, const ObjectModel& object,
+                                         std::uint32_t attempts) const {
+  return fail(context, &object, attempts,
+              "stopped placing object " + quoteText(object.name) + " with sampler " +
+                  quoteText(name()) + " after " + std::to_string(attempts) +
+                  " attempts: the request ran out of time");
 }
 
 bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectModel& object,

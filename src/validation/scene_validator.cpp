@@ -207,18 +207,6 @@ const char* violationKindName(Violation::Kind kind) {
   return "unknown_object";
 }
 
-const char* collisionModeName(CollisionMode mode) {
-  switch (mode) {
-    case CollisionMode::Radius:
-      return "radius";
-    case CollisionMode::Fcl:
-      return "fcl";
-    case CollisionMode::RadiusAndFcl:
-      return "radius_and_fcl";
-  }
-  return "radius";
-}
-
 SceneVerdict validateScene(const SceneGenerator& generator, const PreparedRequest& request,
                            const std::vector<GivenPose>& poses, const ValidationOptions& options) {
   if (!std::isfinite(options.heightTolerance) || options.heightTolerance < 0.0) {

@@ -105,6 +105,13 @@ class UniformRandomSampler : public PlacementSampler {
   /// outside the inset region or into a keep-out zone. @return false
   bool failPlacement(SampleContext& context, const ObjectModel& object, std::uint32_t limit,
                      const std::vector<std::uint32_t>* counts, std::uint32_t outside) const;
+  /// Records that the scene failed at @p object (nullptr: before any object) after
+  /// @p attempts, with @p message; every placement loop fails through it. @return false
+  bool fail(SampleContext& context, const ObjectModel* object, std::uint32_t attempts,
+            std::string message) const;
+  /// fail() for a request whose time ran out while placing @p object. @return false
+  bool failOutOfTime(SampleContext& context, const ObjectModel& object,
+                     std::uint32_t attempts) const;
   /// Checks region and keep-out zones (constructor).
   void checkShapes(const std::string& where);
   /// The draws for @p object, shared by the objects of one horizontal radius (addObjects()).
