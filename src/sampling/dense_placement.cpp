@@ -17,7 +17,7 @@ bool UniformRandomSampler::sampleDense(SampleContext& context, const Eigen::Vect
   const RegionShape region =
       params_.region ? *params_.region : RegionShape::rectangle(params_.xRange, params_.yRange);
   const Eigen::Vector2d offset = base.head<2>();
-  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
+  Engine& engine = engineOf(context);
   double largest = 0.0;
   for (const Entry& e : entries_) {
     largest = std::max(largest, e.object->horizontalRadius);
@@ -77,7 +77,7 @@ bool UniformRandomSampler::sampleDense(SampleContext& context, const Eigen::Vect
     const ObjectModel& object = *entry.object;
     Candidate candidate;
     candidate.object = &object;
-    candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+    candidate.position.z() = height(object, base, onTop);
     const std::size_t first = next;
     bool placed = false;
     while (!placed && next < sites.size()) {

@@ -59,9 +59,8 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
   // Per attempt: the region's draws (README, "Region shapes"), the rotation in the fcl modes,
   // then the inset test of a non-convex polygon, the keep-out zones and the collision test;
   // the rotation after the accepted attempt otherwise, as robosuite.
-  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
-  const std::uint32_t limit =
-      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  Engine& engine = engineOf(context);
+  const std::uint32_t limit = attemptLimit(context);
   const bool check = params_.ensureValidPlacement;
   const bool orientFirst = check && context.needsOrientation();
   std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
@@ -72,7 +71,7 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
 
   Candidate candidate;
   candidate.object = &object;
-  candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+  candidate.position.z() = height(object, base, onTop);
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);

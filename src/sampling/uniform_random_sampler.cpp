@@ -225,9 +225,8 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
   const ObjectModel& object = *entry.object;
   // robosuite's draws: per attempt x then y, one rotation draw after the accepted attempt
   // (the fcl modes draw it per attempt, before their test, which needs it).
-  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
-  const std::uint32_t limit =
-      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  Engine& engine = engineOf(context);
+  const std::uint32_t limit = attemptLimit(context);
   const bool check = params_.ensureValidPlacement;
   const bool orientFirst = check && context.needsOrientation();
   // Rejections per entry, for the failure message; zeroed at the first rejection, since most
@@ -236,7 +235,7 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
 
   Candidate candidate;
   candidate.object = &object;
-  candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+  candidate.position.z() = height(object, base, onTop);
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
