@@ -240,8 +240,11 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
     }
-    candidate.position.x() = uniform(engine, entry.x[0], entry.x[1]) + base.x();
-    candidate.position.y() = uniform(engine, entry.y[0], entry.y[1]) + base.y();
+    // x before y, as robosuite draws them; stored as one pair, since the checker loads the
+    // pair at once and a load that spans two separate stores waits for both to retire.
+    const double x = uniform(engine, entry.x[0], entry.x[1]) + base.x();
+    const double y = uniform(engine, entry.y[0], entry.y[1]) + base.y();
+    candidate.position.head<2>() = Eigen::Vector2d(x, y);
     if (orientFirst) {
       candidate.orientation = sampleOrientation(engine, object);
     }
