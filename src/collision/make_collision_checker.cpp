@@ -12,6 +12,32 @@
 
 namespace placement_samplers {
 
+namespace {
+constexpr CollisionMode kModes[] = {CollisionMode::Radius, CollisionMode::Fcl,
+                                    CollisionMode::RadiusAndFcl};
+}  // namespace
+
+const char* collisionModeName(CollisionMode mode) {
+  switch (mode) {
+    case CollisionMode::Radius:
+      return "radius";
+    case CollisionMode::Fcl:
+      return "fcl";
+    case CollisionMode::RadiusAndFcl:
+      return "radius_and_fcl";
+  }
+  return "radius";
+}
+
+std::optional<CollisionMode> collisionModeFromName(std::string_view name) {
+  for (const CollisionMode mode : kModes) {
+    if (name == collisionModeName(mode)) {
+      return mode;
+    }
+  }
+  return std::nullopt;
+}
+
 void checkCollisionMargin(double margin) {
   if (!std::isfinite(margin) || margin < 0.0 || margin > limits::kCoordinate) {
     std::ostringstream out;

@@ -13,14 +13,8 @@ namespace placement_samplers {
 
 CollisionMode parseCollisionMode(const ConfigNode& node) {
   const std::string& mode = node.asString();
-  if (mode == "radius") {
-    return CollisionMode::Radius;
-  }
-  if (mode == "fcl") {
-    return CollisionMode::Fcl;
-  }
-  if (mode == "radius_and_fcl") {
-    return CollisionMode::RadiusAndFcl;
+  if (const std::optional<CollisionMode> parsed = collisionModeFromName(mode)) {
+    return *parsed;
   }
   node.fail("expected radius, fcl or radius_and_fcl, got " + quoteText(mode));
 }

@@ -17,7 +17,7 @@ bool UniformRandomSampler::sampleDense(SampleContext& context, const Eigen::Vect
   const RegionShape region =
       params_.region ? *params_.region : RegionShape::rectangle(params_.xRange, params_.yRange);
   const Eigen::Vector2d offset = base.head<2>();
-  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
+  Engine& engine = engineOf(context);
   double largest = 0.0;
   for (const Entry& e : entries_) {
     largest = std::max(largest, e.object->horizontalRadius);
@@ -42,13 +42,9 @@ bool UniformRandomSampler::sampleDense(SampleContext& context, const Eigen::Vect
   const double reach = 0.5 * (hi - lo).norm();
   const int k = static_cast<int>(std::ceil(2.0 * reach / spacing)) + 2;
   if (k > 2000) {
-    Failure failure;
-    failure.sampler = name();
-    failure.object = entries_.front().object->name;
-    failure.message = "sampler " + quoteText(name()) +
-                      ": strategy dense: the region is too large for a lattice of its objects";
-    context.fail(std::move(failure));
-    return false;
+    return fail(context, entries_.front().object.get(), 0,
+                "sampler " + quoteText(name()) +
+                    ": strategy dense: the region is too large for a lattice of its objects");
   }
   std::vector<Eigen::Vector2d> sites;
   for (int i = -k; i <= k; ++i) {
@@ -81,7 +77,7 @@ bool UniformRandomSampler::sampleDense(SampleContext& context, const Eigen::Vect
     const ObjectModel& object = *entry.object;
     Candidate candidate;
     candidate.object = &object;
-    candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+    candidate.position.z() = height(object, base, onTop);
     const std::size_t first = next;
     bool placed = false;
     while (!placed && next < sites.size()) {
@@ -90,15 +86,10 @@ bool UniformRandomSampler::sampleDense(SampleContext& context, const Eigen::Vect
       placed = !check || context.firstCollision(candidate) == CollisionChecker::kNone;
     }
     if (!placed) {
-      Failure failure;
-      failure.object = object.name;
-      failure.sampler = name();
-      failure.attempts = static_cast<std::uint32_t>(next - first);
-      failure.message = "could not place object " + quoteText(object.name) + " with sampler " +
-                        quoteText(name()) + ": strategy dense ran out of lattice sites (" +
-                        std::to_string(sites.size()) + " in the region)";
-      context.fail(std::move(failure));
-      return false;
+      return fail(context, &object, static_cast<std::uint32_t>(next - first),
+                  "could not place object " + quoteText(object.name) + " with sampler " +
+                      quoteText(name()) + ": strategy dense ran out of lattice sites (" +
+                      std::to_string(sites.size()) + " in the region)");
     }
     context.addPlacement(name(), candidate, static_cast<std::uint32_t>(next - first),
                          params_.hides);

@@ -82,9 +82,8 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
   const RegionShape region =
       params_.region ? *params_.region : RegionShape::rectangle(params_.xRange, params_.yRange);
   const Eigen::Vector2d offset = base.head<2>();
-  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
-  const std::uint32_t limit =
-      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  Engine& engine = engineOf(context);
+  const std::uint32_t limit = attemptLimit(context);
   const bool check = params_.ensureValidPlacement;
   const bool orientFirst = check && context.needsOrientation();
   // robosuite's radius test prunes cells only when the check includes it (radius,
@@ -102,7 +101,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     const double radius = object.horizontalRadius;
     const double margin = params_.ensureObjectBoundaryInRange ? radius : 0.0;
     const double bottom = object.bottomOffset.z();
-    const double z = params_.zOffset + base.z() - (onTop ? bottom : 0.0);
+    const double z = height(object, base, onTop);
     // Whole cells (centre c, half diagonal h, in the sampler's frame) known to be blocked: the
     // distances change by at most h over the cell. The disks shrink by a hair, so rounding
     // never drops a free position.
@@ -176,21 +175,14 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     candidate.position.z() = z;
     bool placed = false;
     for (std::uint32_t attempt = 1; attempt <= limit && !placed; ++attempt) {
-      if (cells.empty() || ((attempt & 1023u) == 0 && context.expired())) {
-        Failure failure;
-        failure.object = object.name;
-        failure.sampler = name();
-        failure.attempts = attempt - 1;
-        failure.message =
-            cells.empty()
-                ? "could not place object " + quoteText(object.name) + " with sampler " +
-                      quoteText(name()) + ": no free position is left (strategy free_space, " +
-                      std::to_string(attempt - 1) + " attempts)"
-                : "stopped placing object " + quoteText(object.name) + " with sampler " +
-                      quoteText(name()) + " after " + std::to_string(attempt - 1) +
-                      " attempts: the request ran out of time";
-        context.fail(std::move(failure));
-        return false;
+      if (cells.empty()) {
+        return fail(context, &object, attempt - 1,
+                    "could not place object " + quoteText(object.name) + " with sampler " +
+                        quoteText(name()) + ": no free position is left (strategy free_space, " +
+                        std::to_string(attempt - 1) + " attempts)");
+      }
+      if ((attempt & 1023u) == 0 && context.expired()) {
+        return failOutOfTime(context, object, attempt - 1);
       }
       int level = 0;
       std::size_t index = 0;

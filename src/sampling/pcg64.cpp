@@ -236,14 +236,16 @@ void Pcg64::seedFrom(const SeedSequence& sequence) {
 
 void Pcg64::seed(Uint128 initState, Uint128 sequence) {
   increment_ = (sequence << 1) | 1u;
-  state_ = increment_;  // one step from state 0
-  state_ += initState;
-  state_ = state_ * multiplier() + increment_;
+  Uint128 state = increment_;  // one step from state 0
+  state += initState;
+  state = state * multiplier() + increment_;
+  stateLow_ = static_cast<std::uint64_t>(state);
+  stateHigh_ = static_cast<std::uint64_t>(state >> 64);
 }
 
 std::array<std::uint64_t, 4> Pcg64::stateWords() const {
-  return {static_cast<std::uint64_t>(state_ >> 64), static_cast<std::uint64_t>(state_),
-          static_cast<std::uint64_t>(increment_ >> 64), static_cast<std::uint64_t>(increment_)};
+  return {stateHigh_, stateLow_, static_cast<std::uint64_t>(increment_ >> 64),
+          static_cast<std::uint64_t>(increment_)};
 }
 
 }  // namespace placement_samplers

@@ -59,9 +59,8 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
   // Per attempt: the region's draws (README, "Region shapes"), the rotation in the fcl modes,
   // then the inset test of a non-convex polygon, the keep-out zones and the collision test;
   // the rotation after the accepted attempt otherwise, as robosuite.
-  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
-  const std::uint32_t limit =
-      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  Engine& engine = engineOf(context);
+  const std::uint32_t limit = attemptLimit(context);
   const bool check = params_.ensureValidPlacement;
   const bool orientFirst = check && context.needsOrientation();
   std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
@@ -72,18 +71,10 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
 
   Candidate candidate;
   candidate.object = &object;
-  candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+  candidate.position.z() = height(object, base, onTop);
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
     if ((attempt & 1023u) == 0 && context.expired()) {
-      Failure failure;
-      failure.object = object.name;
-      failure.sampler = name();
-      failure.attempts = attempt - 1;
-      failure.message = "stopped placing object " + quoteText(object.name) + " with sampler " +
-                        quoteText(name()) + " after " + std::to_string(attempt - 1) +
-                        " attempts: the request ran out of time";
-      context.fail(std::move(failure));
-      return false;
+      return failOutOfTime(context, object, attempt - 1);
     }
     const Eigen::Vector2d local = entry.draw->draw(engine);
     candidate.position.head<2>() = local + offset;

@@ -198,12 +198,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
   const std::optional<Eigen::Vector3d> resolved =
       this->base(reference, onTop, ref ? &ref->position : nullptr, ref ? ref->object : nullptr);
   if (!resolved) {
-    Failure failure;
-    failure.sampler = name();
-    failure.message = "sampler " + quoteText(name()) + ": reference " + quoteText(reference.name) +
-                      " is neither a fixture nor an object placed before this sampler";
-    context.fail(std::move(failure));
-    return false;
+    return fail(context, nullptr, 0,
+                "sampler " + quoteText(name()) + ": reference " + quoteText(reference.name) +
+                    " is neither a fixture nor an object placed before this sampler");
   }
   const Eigen::Vector3d& base = *resolved;
   if (params_.strategy == UniformSamplerParams::Strategy::FreeSpace) {
@@ -228,9 +225,8 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
   const ObjectModel& object = *entry.object;
   // robosuite's draws: per attempt x then y, one rotation draw after the accepted attempt
   // (the fcl modes draw it per attempt, before their test, which needs it).
-  Engine& engine = params_.hides ? context.hiddenEngine() : context.engine();
-  const std::uint32_t limit =
-      context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  Engine& engine = engineOf(context);
+  const std::uint32_t limit = attemptLimit(context);
   const bool check = params_.ensureValidPlacement;
   const bool orientFirst = check && context.needsOrientation();
   // Rejections per entry, for the failure message; zeroed at the first rejection, since most
@@ -239,21 +235,16 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
 
   Candidate candidate;
   candidate.object = &object;
-  candidate.position.z() = params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+  candidate.position.z() = height(object, base, onTop);
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
     if ((attempt & 1023u) == 0 && context.expired()) {
-      Failure failure;
-      failure.object = object.name;
-      failure.sampler = name();
-      failure.attempts = attempt - 1;
-      failure.message = "stopped placing object " + quoteText(object.name) + " with sampler " +
-                        quoteText(name()) + " after " + std::to_string(attempt - 1) +
-                        " attempts: the request ran out of time";
-      context.fail(std::move(failure));
-      return false;
+      return failOutOfTime(context, object, attempt - 1);
     }
-    candidate.position.x() = uniform(engine, entry.x[0], entry.x[1]) + base.x();
-    candidate.position.y() = uniform(engine, entry.y[0], entry.y[1]) + base.y();
+    // x before y, as robosuite draws them; stored as one pair, since the checker loads the
+    // pair at once and a load that spans two separate stores waits for both to retire.
+    const double x = uniform(engine, entry.x[0], entry.x[1]) + base.x();
+    const double y = uniform(engine, entry.y[0], entry.y[1]) + base.y();
+    candidate.position.head<2>() = Eigen::Vector2d(x, y);
     if (orientFirst) {
       candidate.orientation = sampleOrientation(engine, object);
     }
@@ -275,6 +266,27 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
   }
 
   return failPlacement(context, object, limit, counts, 0);
+}
+
+bool UniformRandomSampler::fail(SampleContext& context, const ObjectModel* object,
+                                std::uint32_t attempts, std::string message) const {
+  Failure failure;
+  if (object != nullptr) {
+    failure.object = object->name;
+  }
+  failure.sampler = name();
+  failure.attempts = attempts;
+  failure.message = std::move(message);
+  context.fail(std::move(failure));
+  return false;
+}
+
+bool UniformRandomSampler::failOutOfTime(SampleContext& context, const ObjectModel& object,
+                                         std::uint32_t attempts) const {
+  return fail(context, &object, attempts,
+              "stopped placing object " + quoteText(object.name) + " with sampler " +
+                  quoteText(name()) + " after " + std::to_string(attempts) +
+                  " attempts: the request ran out of time");
 }
 
 bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectModel& object,

@@ -137,7 +137,7 @@ class Validator {
             "object " + quoteText(object.name) + " is outside the region of sampler " +
                 quoteText(s) + " by " + metres(outside));
       }
-      const double z = params.zOffset + base->z() - (onTop ? object.bottomOffset.z() : 0.0);
+      const double z = sampler.height(object, *base, onTop);
       const double off = std::abs(pose.position.z() - z);
       if (!(off <= options_.heightTolerance)) {
         add(verdict, Violation::Kind::Height, s, "", off,
@@ -205,18 +205,6 @@ const char* violationKindName(Violation::Kind kind) {
       return "bad_pose";
   }
   return "unknown_object";
-}
-
-const char* collisionModeName(CollisionMode mode) {
-  switch (mode) {
-    case CollisionMode::Radius:
-      return "radius";
-    case CollisionMode::Fcl:
-      return "fcl";
-    case CollisionMode::RadiusAndFcl:
-      return "radius_and_fcl";
-  }
-  return "radius";
 }
 
 SceneVerdict validateScene(const SceneGenerator& generator, const PreparedRequest& request,

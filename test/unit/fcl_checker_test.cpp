@@ -664,5 +664,17 @@ TEST(FclChecker, ListAndTreeBroadphaseGiveTheSameScenes) {
   }
 }
 
+TEST(CollisionMode, NamesReadBackAndUnknownNamesAreRefused) {
+  for (const CollisionMode mode :
+       {CollisionMode::Radius, CollisionMode::Fcl, CollisionMode::RadiusAndFcl}) {
+    const std::optional<CollisionMode> back = collisionModeFromName(collisionModeName(mode));
+    ASSERT_TRUE(back.has_value());
+    EXPECT_EQ(*back, mode);
+  }
+  EXPECT_STREQ(collisionModeName(CollisionMode::RadiusAndFcl), "radius_and_fcl");
+  EXPECT_FALSE(collisionModeFromName("Radius").has_value());
+  EXPECT_FALSE(collisionModeFromName("").has_value());
+}
+
 }  // namespace
 }  // namespace placement_samplers

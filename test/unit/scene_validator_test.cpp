@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "placement_samplers/config/config_builder.hpp"
+#include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/validation/scene_validator.hpp"

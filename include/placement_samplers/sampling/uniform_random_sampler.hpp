@@ -74,6 +74,11 @@ class UniformRandomSampler : public PlacementSampler {
   std::optional<Eigen::Vector3d> base(const Reference& reference, bool onTop,
                                       const Eigen::Vector3d* namedPosition,
                                       const ObjectModel* namedObject) const;
+  /// z of @p object's origin [m] above the resolved @p base (robosuite's rule): base z plus
+  /// z_offset, minus the object's bottom offset when @p onTop. Sampling and validation use it.
+  double height(const ObjectModel& object, const Eigen::Vector3d& base, bool onTop) const {
+    return params_.zOffset + base.z() - (onTop ? object.bottomOffset.z() : 0.0);
+  }
   std::vector<ObjectPtr> objects() const override;
   void reset() override;
 
@@ -92,6 +97,14 @@ class UniformRandomSampler : public PlacementSampler {
   };
 
   Eigen::Quaterniond sampleOrientation(Engine& engine, const ObjectModel& object) const;
+  /// The stream this sampler draws from: the scene's, or the hidden objects' own (hide()).
+  Engine& engineOf(SampleContext& context) const {
+    return params_.hides ? context.hiddenEngine() : context.engine();
+  }
+  /// Attempts per object: the request's max_attempts when it sets one, else the sampler's.
+  std::uint32_t attemptLimit(const SampleContext& context) const {
+    return context.maxAttempts() != 0 ? context.maxAttempts() : params_.maxAttempts;
+  }
   bool placeOne(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                 bool onTop) const;
   /// placeOne() for a region shape or keep-out zones (shaped_placement.cpp).
@@ -105,6 +118,13 @@ class UniformRandomSampler : public PlacementSampler {
   /// outside the inset region or into a keep-out zone. @return false
   bool failPlacement(SampleContext& context, const ObjectModel& object, std::uint32_t limit,
                      const std::vector<std::uint32_t>* counts, std::uint32_t outside) const;
+  /// Records that the scene failed at @p object (nullptr: before any object) after
+  /// @p attempts, with @p message; every placement loop fails through it. @return false
+  bool fail(SampleContext& context, const ObjectModel* object, std::uint32_t attempts,
+            std::string message) const;
+  /// fail() for a request whose time ran out while placing @p object. @return false
+  bool failOutOfTime(SampleContext& context, const ObjectModel& object,
+                     std::uint32_t attempts) const;
   /// Checks region and keep-out zones (constructor).
   void checkShapes(const std::string& where);
   /// The draws for @p object, shared by the objects of one horizontal radius (addObjects()).

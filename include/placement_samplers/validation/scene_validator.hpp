@@ -74,7 +74,4 @@ SceneVerdict validateScene(const SceneGenerator& generator, const PreparedReques
 /// "missing_object", "duplicate", "reference_missing" or "bad_pose".
 const char* violationKindName(Violation::Kind kind);
 
-/// "radius", "fcl" or "radius_and_fcl".
-const char* collisionModeName(CollisionMode mode);
-
 }  // namespace placement_samplers

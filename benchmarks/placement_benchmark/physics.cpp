@@ -1,4 +1,4 @@
-#include "physics_bench.hpp"
+#include "physics.hpp"
 
 #include <algorithm>
 #include <chrono>
