@@ -115,9 +115,11 @@ PhysicsStatus PhysicsWorld::simulate(
   for (std::size_t i = 0; i < n; ++i) {
     mjtNum* q = d->qpos + model.qposAddress[i];
     const BodyPose& p = poses[i];
+    // Released at rest where it would land, its clearance taken away: MuJoCo 2.2.2's convex
+    // contacts kick an object that drops onto a box or cylinder near its edge (docs/design.md).
     q[0] = p.position.x();
     q[1] = p.position.y();
-    q[2] = p.position.z();
+    q[2] = p.position.z() - model.bodies[i].zOffset;
     q[3] = p.orientation.w();
     q[4] = p.orientation.x();
     q[5] = p.orientation.y();

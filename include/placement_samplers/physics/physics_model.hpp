@@ -80,7 +80,8 @@ class PhysicsWorld {
   PhysicsWorld(const PhysicsWorld&) = delete;
   PhysicsWorld& operator=(const PhysicsWorld&) = delete;
 
-  /// Simulates the bodies released at rest at @p poses (one per body, in the model's order)
+  /// Simulates the bodies released at rest at @p poses (one per body, in the model's order),
+  /// each lowered by its clearance (PhysicsBody::zOffset),
   /// for the settings' seconds; @p poses become the settled poses and @p outcomes (resized) say
   /// how far each moved and turned and whether it fell.
   /// @param deadline the simulation stops when it passes (checked every few steps)
