@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/sampling/failure_summary.hpp"
@@ -245,22 +246,16 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     request.sampler = sampler;
     request.maxAttempts = maxAttempts;
     if (!mode.empty()) {
-      ConfigNode node = ConfigNode::makeRoot();
-      node.add("collision_check").setString(mode);
-      try {
-        request.collisionCheck = parseCollisionMode(node.at("collision_check"));
-      } catch (const ConfigError&) {
+      request.collisionCheck = collisionModeFromName(mode);
+      if (!request.collisionCheck) {
         err << "sample_scenes: --collision-check: expected radius, fcl or radius_and_fcl, got "
             << quoteText(mode) << "\n";
         return 2;
       }
     }
     if (!physics.empty()) {
-      ConfigNode node = ConfigNode::makeRoot();
-      node.add("physics").setString(physics);
-      try {
-        request.physics = parsePhysicsMode(node.at("physics"));
-      } catch (const ConfigError&) {
+      request.physics = physicsModeFromName(physics);
+      if (!request.physics) {
         err << "sample_scenes: --physics: expected none, check or settle, got "
             << quoteText(physics) << "\n";
         return 2;

@@ -10,14 +10,8 @@ namespace placement_samplers {
 
 PhysicsMode parsePhysicsMode(const ConfigNode& node) {
   const std::string& mode = node.asString();
-  if (mode == "none") {
-    return PhysicsMode::None;
-  }
-  if (mode == "check") {
-    return PhysicsMode::Check;
-  }
-  if (mode == "settle") {
-    return PhysicsMode::Settle;
+  if (const std::optional<PhysicsMode> parsed = physicsModeFromName(mode)) {
+    return *parsed;
   }
   node.fail("expected none, check or settle, got " + quoteText(mode));
 }

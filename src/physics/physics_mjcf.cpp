@@ -1,16 +1,16 @@
 #include "physics/physics_mjcf.hpp"
 
-#include <charconv>
+#include <cstdio>
 #include <unordered_map>
 
 namespace placement_samplers::detail {
 namespace {
 
-/// Shortest text that reads back as the same double: the model has the configured numbers.
+/// 17 significant digits: the text reads back as the same double (the configured numbers).
 void appendNumber(std::string& out, double v) {
   char buffer[32];
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v);
-  out.append(buffer, r.ptr);
+  const int n = std::snprintf(buffer, sizeof(buffer), "%.17g", v);
+  out.append(buffer, static_cast<std::size_t>(n));
 }
 
 void appendAttribute(std::string& out, const char* name, const double* values, int count) {

@@ -17,6 +17,15 @@ const char* physicsModeName(PhysicsMode mode) {
   return "none";
 }
 
+std::optional<PhysicsMode> physicsModeFromName(std::string_view name) {
+  for (const PhysicsMode mode : {PhysicsMode::None, PhysicsMode::Check, PhysicsMode::Settle}) {
+    if (name == physicsModeName(mode)) {
+      return mode;
+    }
+  }
+  return std::nullopt;
+}
+
 std::uint64_t PhysicsSettings::steps() const {
   return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(seconds / timestep)));
 }

@@ -9,6 +9,7 @@
 #include "placement_samplers/output/scene_json.hpp"
 #include "placement_samplers/physics/physics_model.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
+#include "physics_scenes.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {
@@ -16,21 +17,7 @@ namespace {
 
 using test::buildFromYaml;
 using test::configError;
-
-const std::string kCubeOnTable = R"(
-objects:
-  table_top: {shape: box, size: [0.8, 0.8, 0.05]}
-  cube: {shape: box, size: [0.042, 0.042, 0.042], density: 900}
-fixtures:
-  - {name: table, object: table_top, position: [0, 0, 0.775]}
-samplers:
-  - name: CubeSampler
-    objects: [cube]
-    x_range: [-0.2, 0.2]
-    y_range: [-0.2, 0.2]
-    z_offset: 0.01
-    sample_args: {reference: table, on_top: true}
-)";
+using test::kCubeOnTable;
 
 TEST(PhysicsConfig, MassFollowsTheDensity) {
   const Shape cube = Shape::box(Eigen::Vector3d(0.1, 0.1, 0.1));

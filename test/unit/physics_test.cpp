@@ -10,6 +10,7 @@
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/physics/physics_model.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
+#include "physics_scenes.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {
@@ -17,6 +18,7 @@ namespace {
 
 using test::buildFromYaml;
 using test::findPlacement;
+using test::kCubeOnTable;
 
 SceneResult sampleOne(const std::string& yaml, PhysicsMode mode, std::uint64_t seed = 1) {
   const SceneGenerator generator(buildFromYaml(yaml));
@@ -33,22 +35,6 @@ const PhysicsOutcome& outcomeOf(const SceneResult& scene, const std::string& nam
   }
   throw std::invalid_argument("no placement " + name);
 }
-
-// A 4.2 cm cube sampled 1 cm above a table fixture, as robosuite's Lift does.
-const std::string kCubeOnTable = R"(
-objects:
-  table_top: {shape: box, size: [0.8, 0.8, 0.05]}
-  cube: {shape: box, size: [0.042, 0.042, 0.042]}
-fixtures:
-  - {name: table, object: table_top, position: [0, 0, 0.775]}
-samplers:
-  - name: CubeSampler
-    objects: [cube]
-    x_range: [-0.2, 0.2]
-    y_range: [-0.2, 0.2]
-    z_offset: 0.01
-    sample_args: {reference: table, on_top: true}
-)";
 
 TEST(Physics, CubeOnTableIsStableAndSettlesWithinAMillimetre) {
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {

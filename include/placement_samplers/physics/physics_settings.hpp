@@ -4,11 +4,12 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace placement_samplers {
 
 /// What is done with a sampled scene in MuJoCo (README, "Physics").
-enum class PhysicsMode {
+enum class PhysicsMode : std::uint8_t {
   None,   ///< nothing: the sampled poses, as robosuite's samplers give them
   Check,  ///< simulated under gravity; how far each object moved is reported
   Settle  ///< as Check, and the answer's poses are the settled ones
@@ -16,6 +17,9 @@ enum class PhysicsMode {
 
 /// "none", "check" or "settle", as written in configurations.
 const char* physicsModeName(PhysicsMode mode);
+
+/// The mode called @p name (physicsModeName()'s inverse), or nothing.
+std::optional<PhysicsMode> physicsModeFromName(std::string_view name);
 
 /// The configuration's physics keys (top level, and `density` per object).
 struct PhysicsSettings {
