@@ -20,11 +20,19 @@ using test::buildFromYaml;
 using test::findPlacement;
 using test::kCubeOnTable;
 
-SceneResult sampleOne(const std::string& yaml, PhysicsMode mode, std::uint64_t seed = 1) {
+/// A sampled scene and the configuration its placements' names point into.
+struct Sampled : SceneResult {
+  std::shared_ptr<const SceneConfig> config;
+};
+
+Sampled sampleOne(const std::string& yaml, PhysicsMode mode, std::uint64_t seed = 1) {
   const SceneGenerator generator(buildFromYaml(yaml));
   SampleRequest request;
   request.physics = mode;
-  return generator.sampleScene(generator.prepare(request), seed, 0);
+  Sampled out;
+  static_cast<SceneResult&>(out) = generator.sampleScene(generator.prepare(request), seed, 0);
+  out.config = generator.configPtr();
+  return out;
 }
 
 const PhysicsOutcome& outcomeOf(const SceneResult& scene, const std::string& name) {
@@ -38,7 +46,7 @@ const PhysicsOutcome& outcomeOf(const SceneResult& scene, const std::string& nam
 
 TEST(Physics, CubeOnTableIsStableAndSettlesWithinAMillimetre) {
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const SceneResult scene = sampleOne(kCubeOnTable, PhysicsMode::Settle, seed);
+    const Sampled scene = sampleOne(kCubeOnTable, PhysicsMode::Settle, seed);
     ASSERT_TRUE(scene.success) << scene.message;
     ASSERT_TRUE(scene.simulated);
     EXPECT_TRUE(scene.stable);
@@ -53,9 +61,9 @@ TEST(Physics, CubeOnTableIsStableAndSettlesWithinAMillimetre) {
 }
 
 TEST(Physics, SettleGivesSettledPosesAndKeepsTheSampledOnes) {
-  const SceneResult sampled = sampleOne(kCubeOnTable, PhysicsMode::None);
-  const SceneResult settled = sampleOne(kCubeOnTable, PhysicsMode::Settle);
-  const SceneResult checked = sampleOne(kCubeOnTable, PhysicsMode::Check);
+  const Sampled sampled = sampleOne(kCubeOnTable, PhysicsMode::None);
+  const Sampled settled = sampleOne(kCubeOnTable, PhysicsMode::Settle);
+  const Sampled checked = sampleOne(kCubeOnTable, PhysicsMode::Check);
   ASSERT_TRUE(sampled.success && settled.success && checked.success);
   const ObjectPlacement& s = sampled.placements[0];
   const PhysicsOutcome& o = settled.physics[0];
@@ -71,7 +79,7 @@ TEST(Physics, SettleGivesSettledPosesAndKeepsTheSampledOnes) {
 }
 
 TEST(Physics, BoxBalancedOnASphereIsUnstable) {
-  const SceneResult scene = sampleOne(R"(
+  const Sampled scene = sampleOne(R"(
 ground_z: 0
 objects:
   ball: {shape: sphere, radius: 0.05}
@@ -89,7 +97,7 @@ samplers:
     ensure_valid_placement: false
     sample_args: {reference: ball, on_top: true}
 )",
-                                      PhysicsMode::Check);
+                                  PhysicsMode::Check);
   ASSERT_TRUE(scene.success) << scene.message;
   ASSERT_TRUE(scene.simulated);
   EXPECT_FALSE(scene.stable);
@@ -98,7 +106,7 @@ samplers:
 }
 
 TEST(Physics, TallThinBoxOnASmallTopTipsOver) {
-  const SceneResult scene = sampleOne(R"(
+  const Sampled scene = sampleOne(R"(
 ground_z: 0
 objects:
   post: {shape: cylinder, radius: 0.01, length: 0.2}
@@ -114,7 +122,7 @@ samplers:
     ensure_valid_placement: false
     sample_args: {reference: pillar, on_top: true}
 )",
-                                      PhysicsMode::Settle);
+                                  PhysicsMode::Settle);
   ASSERT_TRUE(scene.success) << scene.message;
   EXPECT_FALSE(scene.stable);
   const PhysicsOutcome& stick = scene.physics[0];
@@ -151,7 +159,7 @@ samplers:
     sample_args: {reference: plate, on_top: true}
 )";
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const SceneResult scene = sampleOne(yaml, PhysicsMode::Settle, seed);
+    const Sampled scene = sampleOne(yaml, PhysicsMode::Settle, seed);
     ASSERT_TRUE(scene.success) << scene.message;
     EXPECT_TRUE(scene.stable) << "seed " << seed;
     const ObjectPlacement* plate = findPlacement(scene.placements, "plate");
@@ -169,7 +177,7 @@ samplers:
 // Near a table's edge, lifted 1 cm: it stays (released in contact; dropped, MuJoCo 2.2.2's
 // convex contacts kicked it off the table).
 TEST(Physics, ClearanceNearATableEdgeIsNoFall) {
-  const SceneResult scene = sampleOne(R"(
+  const Sampled scene = sampleOne(R"(
 objects:
   table_top: {shape: box, size: [0.9, 0.9, 0.04]}
   plate: {shape: cylinder, radius: 0.1, length: 0.02}
@@ -183,7 +191,7 @@ samplers:
     z_offset: 0.01
     sample_args: {reference: table, on_top: true}
 )",
-                                      PhysicsMode::Settle);
+                                  PhysicsMode::Settle);
   ASSERT_TRUE(scene.success);
   EXPECT_TRUE(scene.stable);
   EXPECT_NEAR(scene.placements[0].position.x(), 0.33, 0.001);
@@ -191,19 +199,19 @@ samplers:
 
 TEST(Physics, ObjectWithNoSupportFalls) {
   // Nothing at all to land on.
-  const SceneResult alone = sampleOne(R"(
+  const Sampled alone = sampleOne(R"(
 objects:
   cube: {shape: box, size: [0.05, 0.05, 0.05]}
 samplers:
   - {name: S, objects: [cube], reference_pos: [0, 0, 1], ensure_object_boundary_in_range: false}
 )",
-                                      PhysicsMode::Check);
+                                  PhysicsMode::Check);
   ASSERT_TRUE(alone.success);
   EXPECT_FALSE(alone.stable);
   EXPECT_TRUE(alone.physics[0].fallen);
   EXPECT_GT(alone.physics[0].moved, 1.0);  // about g / 2 in one second
   // A table, but the cube is put beside it: it falls past the table's bottom.
-  const SceneResult beside = sampleOne(R"(
+  const Sampled beside = sampleOne(R"(
 objects:
   table_top: {shape: box, size: [0.8, 0.8, 0.05]}
   cube: {shape: box, size: [0.05, 0.05, 0.05]}
@@ -215,7 +223,7 @@ samplers:
     reference_pos: [1.0, 0, 0.8]
     ensure_object_boundary_in_range: false
 )",
-                                       PhysicsMode::Check);
+                                   PhysicsMode::Check);
   ASSERT_TRUE(beside.success);
   EXPECT_FALSE(beside.stable);
   EXPECT_TRUE(beside.physics[0].fallen);
@@ -279,7 +287,7 @@ TEST(Physics, SameSeedGivesTheSameSettledPosesOnAnyThreadCount) {
 }
 
 TEST(Physics, HiddenObjectsAreNotSimulated) {
-  const SceneResult scene = sampleOne(kPile, PhysicsMode::Settle);
+  const Sampled scene = sampleOne(kPile, PhysicsMode::Settle);
   ASSERT_TRUE(scene.success);
   const ObjectPlacement* f = findPlacement(scene.placements, "f");
   ASSERT_NE(f, nullptr);
@@ -343,7 +351,7 @@ samplers:
 }
 
 TEST(Physics, FailedScenesAreNotSimulated) {
-  const SceneResult scene = sampleOne(R"(
+  const Sampled scene = sampleOne(R"(
 ground_z: 0
 max_attempts: 3
 objects:
@@ -352,7 +360,7 @@ objects:
 samplers:
   - {name: S, objects: [big, other], ensure_object_boundary_in_range: false}
 )",
-                                      PhysicsMode::Check);
+                                  PhysicsMode::Check);
   EXPECT_FALSE(scene.success);
   EXPECT_FALSE(scene.simulated);
   EXPECT_FALSE(scene.stable);
