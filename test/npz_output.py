@@ -4,7 +4,9 @@
 For every --config given, runs sample_scenes twice with the same arguments (JSON lines, then
 --output) and checks that the .npz holds exactly the JSON's scenes: names in the sampler's order,
 position and orientation bit for bit, NaN where a failed scene placed nothing, attempts, success,
-the scene indices and the seed; the exit status is the same. Exits non-zero on a difference.
+the scene indices and the seed; the exit status is the same. With --physics-scenes, also runs
+--physics check and settle and compares stable, moved, turned, fallen and (settle) the sampled
+poses, NaN where a scene was not simulated. Exits non-zero on a difference.
 """
 
 import argparse
@@ -86,10 +88,50 @@ def compare(binary, config, extra, directory, expect_failures, expect_hidden):
                 problems.append("scene %d: %s not placed but not NaN" % (scene["scene"], names[c]))
         if len(problems) > 10:
             break
+    if "--physics" in extra:
+        problems += compare_physics(data, lines, column, extra[extra.index("--physics") + 1])
     if expect_failures and failed == 0:
         problems.append("no failed scene: the failure case is not tested")
     if expect_hidden and hidden == 0:
         problems.append("no hidden object: the hidden case is not tested")
+    return problems
+
+
+def compare_physics(data, lines, column, mode):
+    """The physics members against the JSON lines of a --physics check or settle run."""
+    problems = []
+    k, n = len(lines), len(column)
+    shapes = {"stable": (k,), "moved": (k, n), "turned": (k, n), "fallen": (k, n)}
+    if mode == "settle":
+        shapes.update({"sampled_position": (k, n, 3), "sampled_orientation": (k, n, 4)})
+    elif "sampled_position" in data:
+        problems.append("sampled_position written under --physics check")
+    for key, shape in shapes.items():
+        if key not in data or data[key].shape != shape:
+            return problems + ["%s missing or not of shape %s" % (key, shape)]
+    simulated = 0
+    for row, scene in enumerate(lines):
+        if data["stable"][row] != scene["stable"]:
+            problems.append("scene %d: stable %s, JSON %s"
+                            % (scene["scene"], data["stable"][row], scene["stable"]))
+        for p in scene["placements"]:
+            c = column[p["name"]]
+            if "moved" not in p:
+                if not np.isnan(data["moved"][row, c]):
+                    problems.append("scene %d, %s: not simulated but moved is a number"
+                                    % (scene["scene"], p["name"]))
+                continue
+            simulated += 1
+            got = [data["moved"][row, c], data["turned"][row, c], bool(data["fallen"][row, c])]
+            if got != [p["moved"], p["turned"], p["fallen"]]:
+                problems.append("scene %d, %s: npz %s, JSON %s" % (
+                    scene["scene"], p["name"], got, [p["moved"], p["turned"], p["fallen"]]))
+            if mode == "settle" and (
+                    data["sampled_position"][row, c].tolist() != p["sampled_position"]
+                    or data["sampled_orientation"][row, c].tolist() != p["sampled_orientation"]):
+                problems.append("scene %d, %s: sampled pose differs" % (scene["scene"], p["name"]))
+    if simulated == 0:
+        problems.append("no simulated placement: the physics case is not tested")
     return problems
 
 
@@ -99,6 +141,8 @@ def main():
     parser.add_argument("--config", action="append", required=True,
                         help="a configuration; NAME:failures or NAME:hidden: it must have some")
     parser.add_argument("--scenes", type=int, default=300)
+    parser.add_argument("--physics-scenes", type=int, default=0,
+                        help="also run --physics check and settle on this many scenes")
     args = parser.parse_args()
     runs = []
     for spec in args.config:
@@ -106,6 +150,9 @@ def main():
         for extra in (["--seed", "3"], ["--seed", "4294967303", "--first-scene", "1099511627776"],
                       ["--seed", "5", "--collision-check", "fcl", "--threads", "2"]):
             runs.append((path, extra + ["--scenes", str(args.scenes)], expect))
+        for mode in ("check", "settle") if args.physics_scenes else ():
+            runs.append((path, ["--seed", "6", "--physics", mode, "--threads", "2", "--scenes",
+                                str(args.physics_scenes)], expect))
     failures = 0
     with tempfile.TemporaryDirectory() as directory:
         for path, extra, expect in runs:

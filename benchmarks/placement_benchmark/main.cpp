@@ -7,6 +7,7 @@
 #include <string>
 
 #include "bench_support.hpp"
+#include "physics.hpp"
 #include "placement_samplers/process/malloc_tuning.hpp"
 
 using namespace bench;
@@ -16,7 +17,7 @@ namespace {
 int usage(const char* self) {
   std::fprintf(stderr,
                "usage: %s [--config-dir DIR] [--quick] [--default-malloc] [--only "
-               "envs|blocks|clutter|strategies|fcl|batch]\n"
+               "envs|blocks|clutter|strategies|fcl|batch|physics]\n"
                "       %s [--quick] --config FILE [--config FILE ...]\n"
                "Times the samplers on fixed configurations and seeds and prints tables.\n"
                "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
@@ -48,7 +49,7 @@ int main(int argc, char** argv) {
     } else if (arg == "--only" && i + 1 < argc) {
       only = argv[++i];
       if (only != "envs" && only != "blocks" && only != "clutter" && only != "strategies" &&
-          only != "fcl" && only != "batch") {
+          only != "fcl" && only != "batch" && only != "physics") {
         return usage(argv[0]);
       }
     } else {
@@ -86,6 +87,9 @@ int main(int argc, char** argv) {
     }
     if (only.empty() || only == "batch") {
       benchBatch(options);
+    }
+    if (only.empty() || only == "physics") {
+      placement_samplers::benchmark::benchPhysics(options.configDir, options.repetitions);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "placement_benchmark: %s\n", e.what());

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/sampling/failure_summary.hpp"
@@ -31,6 +32,7 @@ constexpr const char* kUsage =
     "usage: sample_scenes --config FILE [--seed S] [--scenes K] [--first-scene N]\n"
     "                     [--sampler NAME] [--collision-check radius|fcl|radius_and_fcl]\n"
     "                     [--max-attempts N] [--threads T] [--output FILE.npz]\n"
+    "                     [--physics none|check|settle]\n"
     "       sample_scenes --config FILE --describe\n"
     "       sample_scenes --config FILE --validate SCENES.jsonl|- [--height-tolerance M]\n"
     "                     [--sampler NAME] [--collision-check MODE]\n"
@@ -42,6 +44,8 @@ constexpr const char* kUsage =
     "configuration as JSON instead (derived radii and offsets, the sampler tree).\n"
     "--output writes the scenes into FILE.npz (numpy.load reads it: names, position,\n"
     "orientation, attempts, success, scene, seed) instead of printing them.\n"
+    "--physics simulates each placed scene in MuJoCo (default: the configuration's physics):\n"
+    "check adds stable, moved, turned and fallen; settle also gives the settled poses.\n"
     "--validate reads scenes in this tool's JSON lines (- = stdin) and prints one verdict\n"
     "per scene and line: each object inside its sampler's region, at its height (within M,\n"
     "default 0.005 m) and overlapping nothing under the check; exit 0 when all are valid.\n"
@@ -141,6 +145,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
   std::string configPath;
   std::string sampler;
   std::string mode;
+  std::string physics;
   bool haveSeed = false;
   std::uint64_t seed = 0;
   std::uint64_t scenes = 1;
@@ -163,13 +168,13 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
         continue;
       }
       if (i + 1 >= args.size()) {
-        throw UsageError(flag == "--config" || flag == "--seed" || flag == "--scenes" ||
-                                 flag == "--first-scene" || flag == "--sampler" ||
-                                 flag == "--collision-check" || flag == "--max-attempts" ||
-                                 flag == "--threads" || flag == "--output" ||
-                                 flag == "--validate" || flag == "--height-tolerance"
-                             ? flag + ": missing value"
-                             : "unknown argument " + quoteText(flag));
+        throw UsageError(
+            flag == "--config" || flag == "--seed" || flag == "--scenes" ||
+                    flag == "--first-scene" || flag == "--sampler" || flag == "--collision-check" ||
+                    flag == "--max-attempts" || flag == "--threads" || flag == "--output" ||
+                    flag == "--validate" || flag == "--height-tolerance" || flag == "--physics"
+                ? flag + ": missing value"
+                : "unknown argument " + quoteText(flag));
       }
       const std::string& value = args[++i];
       if (flag == "--config") {
@@ -188,6 +193,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       } else if (flag == "--max-attempts") {
         maxAttempts = static_cast<std::uint32_t>(
             parseUnsigned(flag, value, std::numeric_limits<std::uint32_t>::max()));
+      } else if (flag == "--physics") {
+        physics = value;
       } else if (flag == "--validate") {
         validatePath = value;
       } else if (flag == "--height-tolerance") {
@@ -239,13 +246,18 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     request.sampler = sampler;
     request.maxAttempts = maxAttempts;
     if (!mode.empty()) {
-      ConfigNode node = ConfigNode::makeRoot();
-      node.add("collision_check").setString(mode);
-      try {
-        request.collisionCheck = parseCollisionMode(node.at("collision_check"));
-      } catch (const ConfigError&) {
+      request.collisionCheck = collisionModeFromName(mode);
+      if (!request.collisionCheck) {
         err << "sample_scenes: --collision-check: expected radius, fcl or radius_and_fcl, got "
             << quoteText(mode) << "\n";
+        return 2;
+      }
+    }
+    if (!physics.empty()) {
+      request.physics = physicsModeFromName(physics);
+      if (!request.physics) {
+        err << "sample_scenes: --physics: expected none, check or settle, got "
+            << quoteText(physics) << "\n";
         return 2;
       }
     }
@@ -277,7 +289,9 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       for (const ObjectPtr& object : prepared.sampler->objects()) {
         names.push_back(object->name);
       }
-      npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed);
+      NpzOptions npzOptions;
+      npzOptions.physics = prepared.physics.mode;
+      npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed, npzOptions);
     }
     const FailureSummary failures =
         writeScenes(generator, prepared, seed, firstScene, scenes, threads, out, npz.get());

@@ -65,10 +65,14 @@ std::vector<GivenPose> readScene(const std::string& line, std::uint64_t fallback
     }
     GivenPose pose;
     pose.name = p["name"].as<std::string>();
+    // Settled scenes (--physics settle) keep the sampled poses: those are what sampling chose.
+    const bool settled = p["sampled_position"] && p["sampled_orientation"];
+    const char* position = settled ? "sampled_position" : "position";
+    const char* orientation = settled ? "sampled_orientation" : "orientation";
     pose.position =
-        readVector<3>(p["position"], where + " (" + quoteText(pose.name) + ") position");
+        readVector<3>(p[position], where + " (" + quoteText(pose.name) + ") " + position);
     const Eigen::Vector4d q =
-        readVector<4>(p["orientation"], where + " (" + quoteText(pose.name) + ") orientation");
+        readVector<4>(p[orientation], where + " (" + quoteText(pose.name) + ") " + orientation);
     pose.orientation.coeffs() = q;  // x, y, z, w, as printed
     poses.push_back(std::move(pose));
   }

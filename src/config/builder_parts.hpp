@@ -27,6 +27,19 @@ void checkTreeSize(const ConfigNode& root);
 /// @p config; objects, fixtures and samplers are the builder's.
 void readSettings(const ConfigNode& root, SceneConfig& config);
 
+/// Bounds of the physics settings (README, "Physics").
+constexpr double kMaxPhysicsSeconds = 60.0;   ///< simulated time per scene [s]
+constexpr double kMaxPhysicsTimestep = 0.1;   ///< [s]
+constexpr double kMinPhysicsTimestep = 1e-4;  ///< [s]
+constexpr double kMaxDensity = 1e5;           ///< [kg/m^3] (osmium: 22,590)
+
+/// Reads the physics keys (physics, physics_seconds, physics_timestep, the tolerances,
+/// physics_retry, physics_max_draws, ground_z, density) into @p physics.
+void readPhysicsSettings(const ConfigNode& root, PhysicsSettings& physics);
+
+/// A density in (0, kMaxDensity] [kg/m^3]: the top-level default or an object's own.
+double parseDensity(const ConfigNode& node);
+
 /// Adds to @p names the names of samplers in @p list (and nested lists) whose parameters live
 /// in a top-level map of their own.
 void collectNamedSamplers(const ConfigNode& root, const ConfigNode& list,

@@ -39,7 +39,16 @@ constexpr const char* kTopLevelKeys[] = {"frame_id",
                                          "max_fixtures_per_request",
                                          "max_placements_per_request",
                                          "tf_static",
-                                         "tf_rate"};
+                                         "tf_rate",
+                                         "physics",
+                                         "physics_seconds",
+                                         "physics_timestep",
+                                         "physics_position_tolerance",
+                                         "physics_rotation_tolerance",
+                                         "physics_retry",
+                                         "physics_max_draws",
+                                         "ground_z",
+                                         "density"};
 
 }  // namespace
 
@@ -153,6 +162,7 @@ void readSettings(const ConfigNode& root, SceneConfig& config) {
       n->fail("expected a rate in [0.1, 1000] [Hz]");
     }
   }
+  readPhysicsSettings(root, config.physics);
 }
 
 }  // namespace detail

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "config/builder_parts.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
 #include "placement_samplers/geometry/mjcf_geometry.hpp"
@@ -17,7 +18,7 @@ namespace {
 
 /// Keys of an object besides its shape's: what the offsets and orientation of the whole are.
 const std::vector<std::string> kObjectKeys{"horizontal_radius", "bottom_offset", "top_offset",
-                                           "init_orientation"};
+                                           "init_orientation", "density"};
 /// Keys of one part of a composite object besides its shape's: its pose in the object frame.
 const std::vector<std::string> kPartKeys{"position", "orientation"};
 
@@ -87,7 +88,7 @@ Shape parseMesh(const std::string& name, const ConfigNode& node, MeshLoader& mes
 std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
                              const BuildOptions& options, MeshLoader& meshes) {
   node.checkKeys({"urdf_file", "urdf_param", "link", "horizontal_radius", "bottom_offset",
-                  "top_offset", "init_orientation"});
+                  "top_offset", "init_orientation", "density"});
   const ConfigNode* file = node.get("urdf_file");
   const ConfigNode* param = node.get("urdf_param");
   if (file != nullptr && param != nullptr) {
@@ -359,7 +360,11 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
   if (!problem.empty()) {
     node.fail("object " + quoteText(name) + ": " + problem);
   }
-  return makeObject(name, std::move(shapes), init, overrides);
+  ObjectModel object = makeObject(name, std::move(shapes), init, overrides);
+  if (const ConfigNode* d = node.get("density")) {
+    object.density = detail::parseDensity(*d);
+  }
+  return object;
 }
 
 }  // namespace placement_samplers

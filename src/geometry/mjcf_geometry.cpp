@@ -2,16 +2,14 @@
 
 #include <mujoco/mujoco.h>
 
-#include <array>
 #include <cctype>
-#include <cstdio>
 #include <cstring>
 #include <cmath>
 #include <memory>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
+#include "geometry/mujoco_compile.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/input_files.hpp"
 #include "placement_samplers/limits.hpp"
@@ -20,17 +18,8 @@
 namespace placement_samplers {
 namespace {
 
-// MuJoCo's default error handler ends the process; ours turns an error into an exception.
-// MuJoCo's handlers are global: one load at a time.
-std::mutex mujocoMutex;
-
-[[noreturn]] void throwMujocoError(const char* message) { throw std::runtime_error(message); }
-void ignoreMujocoWarning(const char*) {}
-
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
+using detail::MujocoModelPtr;
+using detail::MujocoVfsPtr;
 
 const char* nameOf(const mjModel& m, int address) { return m.names + address; }
 
@@ -112,20 +101,11 @@ constexpr unsigned char kPlaceholderPng[] = {
     0xc0, 0x01, 0x18, 0x86, 0x96, 0x04, 0x00, 0x82, 0xf3, 0x60, 0x01, 0x25, 0x95, 0xb3, 0x63,
     0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
 
-struct VfsDeleter {
-  void operator()(mjVFS* vfs) const {
-    mj_deleteVFS(vfs);
-    delete vfs;
-  }
-};
-using VfsPtr = std::unique_ptr<mjVFS, VfsDeleter>;
-
 /// A virtual file system in which every texture file the document names is the placeholder:
 /// MuJoCo looks files up there first, by their name without the path. The `file` attributes of
 /// <texture> elements are found by a scan of the text (not of included files).
-VfsPtr textureVfs(const std::string& text) {
-  VfsPtr vfs(new mjVFS);
-  mj_defaultVFS(vfs.get());
+MujocoVfsPtr textureVfs(const std::string& text) {
+  MujocoVfsPtr vfs = detail::makeVfs();
   std::size_t at = 0;
   while ((at = text.find("<texture", at)) != std::string::npos) {
     const std::size_t end = text.find('>', at);
@@ -221,42 +201,17 @@ MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_
                       (root.empty() ? std::string("missing") : "<" + escapeText(root) + ">") +
                       ", expected <mujoco>");
   }
-  ModelPtr model;
-  {
-    std::lock_guard<std::mutex> lock(mujocoMutex);
-    void (*previousError)(const char*) = mju_user_error;
-    void (*previousWarning)(const char*) = mju_user_warning;
-    mju_user_error = throwMujocoError;
-    mju_user_warning = ignoreMujocoWarning;
-    std::array<char, 1024> error{};
-    try {
-      const VfsPtr vfs = textureVfs(text);
-      std::string file = path;
-      if (path.empty()) {
-        file = kTextName;
-        if (mj_makeEmptyFileVFS(vfs.get(), kTextName, static_cast<int>(text.size())) != 0) {
-          throw std::runtime_error("too many texture files");
-        }
-        std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kTextName)], text.data(), text.size());
-      }
-      model.reset(
-          mj_loadXML(file.c_str(), vfs.get(), error.data(), static_cast<int>(error.size())));
-    } catch (const std::exception& e) {
-      std::snprintf(error.data(), error.size(), "%s", e.what());
+  MujocoModelPtr model;
+  try {
+    const MujocoVfsPtr vfs = textureVfs(text);
+    std::string file = path;
+    if (path.empty()) {
+      file = kTextName;
+      detail::addVfsFile(*vfs, kTextName, text);
     }
-    mju_user_error = previousError;
-    mju_user_warning = previousWarning;
-    if (!model) {
-      std::string reason = error.data();
-      while (!reason.empty() && (reason.back() == '\n' || reason.back() == ' ')) {
-        reason.pop_back();
-      }
-      // MuJoCo's message has lines: "Error: ... \nObject name = ..., line = ...".
-      for (std::size_t at = reason.find('\n'); at != std::string::npos; at = reason.find('\n')) {
-        reason.replace(at, 1, "; ");
-      }
-      throw ConfigError("MuJoCo could not load it: " + escapeText(reason));
-    }
+    model = detail::compileMjcf(file, vfs.get());
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(std::string("MuJoCo could not load it: ") + escapeText(e.what()));
   }
   const mjModel& m = *model;
   if (m.nbody < 2) {

@@ -20,11 +20,36 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
 namespace placement_samplers {
 namespace {
 
-// The members, in the file's order.
-enum Member { kNames, kPosition, kOrientation, kAttempts, kSuccess, kScene, kSeed, kMembers };
-constexpr const char* kMemberNames[kMembers] = {"names.npy",    "position.npy", "orientation.npy",
-                                                "attempts.npy", "success.npy",  "scene.npy",
-                                                "seed.npy"};
+// The members, in the file's order; the physics ones only when the scenes are simulated.
+enum Member {
+  kNames,
+  kPosition,
+  kOrientation,
+  kAttempts,
+  kSuccess,
+  kScene,
+  kSeed,
+  kStable,
+  kMoved,
+  kTurned,
+  kFallen,
+  kSampledPosition,
+  kSampledOrientation,
+  kMembers
+};
+constexpr const char* kMemberNames[kMembers] = {"names.npy",
+                                                "position.npy",
+                                                "orientation.npy",
+                                                "attempts.npy",
+                                                "success.npy",
+                                                "scene.npy",
+                                                "seed.npy",
+                                                "stable.npy",
+                                                "moved.npy",
+                                                "turned.npy",
+                                                "fallen.npy",
+                                                "sampled_position.npy",
+                                                "sampled_orientation.npy"};
 
 }  // namespace
 
@@ -39,7 +64,9 @@ struct NpzWriter::Impl {
   std::uint64_t rows = 0;  // scenes written so far
   std::vector<std::string> names;
   std::unordered_map<std::string, std::size_t> columns;
-  std::vector<npz::ZipMember> members;
+  PhysicsMode physics = PhysicsMode::None;
+  std::vector<npz::ZipMember> members;       // the file's members, in order
+  int slot[kMembers] = {};                   // each member's index in members, -1 when left out
   std::uint64_t arrayOffset[kMembers] = {};  // where each member's array starts (after .npy header)
   std::uint64_t directoryOffset = 0;
   std::uint64_t fileSize = 0;
@@ -49,6 +76,12 @@ struct NpzWriter::Impl {
   std::vector<std::uint32_t> attempts;
   std::vector<std::uint8_t> success;
   std::vector<std::uint64_t> scene;
+  std::vector<std::uint8_t> stable;
+  std::vector<double> moved;
+  std::vector<double> turned;
+  std::vector<std::uint8_t> fallen;
+  std::vector<double> sampledPosition;
+  std::vector<double> sampledOrientation;
 
   // Also when the constructor throws: the file is closed and a partial one removed.
   ~Impl() {
@@ -87,8 +120,9 @@ struct NpzWriter::Impl {
   /// Appends @p size bytes to member @p m at row offset @p offset, updating its CRC.
   void append(Member m, const void* data, std::size_t size, std::uint64_t offset) {
     writeAt(data, size, arrayOffset[m] + offset);
-    members[m].crc =
-        static_cast<std::uint32_t>(crc32_z(members[m].crc, static_cast<const Bytef*>(data), size));
+    npz::ZipMember& member = members[static_cast<std::size_t>(slot[m])];
+    member.crc =
+        static_cast<std::uint32_t>(crc32_z(member.crc, static_cast<const Bytef*>(data), size));
   }
 
   std::size_t column(const ObjectPlacement& p, std::size_t i) const {
@@ -153,9 +187,28 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   payload[kScene] = numScenes * sizeof(std::uint64_t);
   headers[kSeed] = npz::npyHeader("<u8", {});
   payload[kSeed] = sizeof(std::uint64_t);
+  headers[kStable] = npz::npyHeader("|b1", {numScenes});
+  payload[kStable] = numScenes;
+  headers[kMoved] = npz::npyHeader("<f8", {numScenes, n});
+  payload[kMoved] = numScenes * n * sizeof(double);
+  headers[kTurned] = headers[kMoved];
+  payload[kTurned] = payload[kMoved];
+  headers[kFallen] = npz::npyHeader("|b1", {numScenes, n});
+  payload[kFallen] = numScenes * n;
+  headers[kSampledPosition] = headers[kPosition];
+  payload[kSampledPosition] = payload[kPosition];
+  headers[kSampledOrientation] = headers[kOrientation];
+  payload[kSampledOrientation] = payload[kOrientation];
 
-  d.members.resize(kMembers);
+  d.physics = options.physics;
+  const int used = options.physics == PhysicsMode::None    ? kStable
+                   : options.physics == PhysicsMode::Check ? kSampledPosition
+                                                           : kMembers;
   for (int m = 0; m < kMembers; ++m) {
+    d.slot[m] = m < used ? m : -1;
+  }
+  d.members.resize(static_cast<std::size_t>(used));
+  for (int m = 0; m < used; ++m) {
     d.members[m].name = kMemberNames[m];
     d.members[m].size = headers[m].size() + payload[m];
   }
@@ -175,7 +228,7 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
     throw OutputError(d.shownPath + ": not enough disk space for " + std::to_string(d.fileSize) +
                       " bytes: " + std::strerror(ENOSPC));
   }
-  for (int m = 0; m < kMembers; ++m) {
+  for (int m = 0; m < used; ++m) {
     const std::string local = npz::localHeader(d.members[m], d.zip64);
     d.writeAt(local.data(), local.size(), d.members[m].headerOffset);
     d.arrayOffset[m] = d.members[m].dataOffset + headers[m].size();
@@ -203,10 +256,38 @@ void NpzWriter::write(const std::vector<SceneResult>& scenes) {
   d.attempts.assign(k * n, 0);
   d.success.resize(k);
   d.scene.resize(k);
+  const bool physics = d.physics != PhysicsMode::None;
+  const bool settle = d.physics == PhysicsMode::Settle;
+  if (physics) {
+    d.stable.assign(k, 0);
+    d.moved.assign(k * n, kNan);
+    d.turned.assign(k * n, kNan);
+    d.fallen.assign(k * n, 0);
+  }
+  if (settle) {
+    d.sampledPosition.assign(k * n * 3, kNan);
+    d.sampledOrientation.assign(k * n * 4, kNan);
+  }
   for (std::size_t s = 0; s < k; ++s) {
     const SceneResult& result = scenes[s];
     d.success[s] = result.success ? 1 : 0;
     d.scene[s] = result.index;
+    if (physics) {
+      d.stable[s] = result.stable ? 1 : 0;
+      const std::size_t simulated = result.simulated ? result.physics.size() : 0;
+      for (std::size_t i = 0; i < simulated && i < result.placements.size(); ++i) {
+        const PhysicsOutcome& o = result.physics[i];
+        const std::size_t c = s * n + d.column(result.placements[i], i);
+        d.moved[c] = o.moved;
+        d.turned[c] = o.turned;
+        d.fallen[c] = o.fallen ? 1 : 0;
+        if (settle) {
+          std::memcpy(&d.sampledPosition[c * 3], o.sampledPosition.data(), 3 * sizeof(double));
+          std::memcpy(&d.sampledOrientation[c * 4], o.sampledOrientation.coeffs().data(),
+                      4 * sizeof(double));
+        }
+      }
+    }
     for (std::size_t i = 0; i < result.placements.size(); ++i) {
       const ObjectPlacement& p = result.placements[i];
       const std::size_t c = s * n + d.column(p, i);
@@ -224,6 +305,18 @@ void NpzWriter::write(const std::vector<SceneResult>& scenes) {
            row * n * sizeof(std::uint32_t));
   d.append(kSuccess, d.success.data(), k, row);
   d.append(kScene, d.scene.data(), k * sizeof(std::uint64_t), row * sizeof(std::uint64_t));
+  if (physics) {
+    d.append(kStable, d.stable.data(), k, row);
+    d.append(kMoved, d.moved.data(), k * n * sizeof(double), row * n * sizeof(double));
+    d.append(kTurned, d.turned.data(), k * n * sizeof(double), row * n * sizeof(double));
+    d.append(kFallen, d.fallen.data(), k * n, row * n);
+  }
+  if (settle) {
+    d.append(kSampledPosition, d.sampledPosition.data(), k * n * 3 * sizeof(double),
+             row * n * 3 * sizeof(double));
+    d.append(kSampledOrientation, d.sampledOrientation.data(), k * n * 4 * sizeof(double),
+             row * n * 4 * sizeof(double));
+  }
   d.rows += k;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <limits>
 
 #include "placement_samplers/sampling/sequential_composite_sampler.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
@@ -198,6 +199,41 @@ void appendSampler(std::string& out, const PlacementSampler& sampler) {
   out += "]}";
 }
 
+/// ", \"physics\": {...}" with the settings that are set or differ from the defaults; nothing
+/// when none do, so that a configuration without physics keys describes as before.
+void appendPhysics(std::string& out, const PhysicsSettings& p) {
+  const PhysicsSettings defaults;
+  std::string keys;
+  const auto number = [&](const char* name, double value, double fallback) {
+    if (value != fallback) {
+      keys += keys.empty() ? "\"" : ", \"";
+      keys += name;
+      keys += "\": ";
+      appendNumber(keys, value);
+    }
+  };
+  if (p.mode != defaults.mode) {
+    keys += "\"physics\": \"";
+    keys += physicsModeName(p.mode);
+    keys += '"';
+  }
+  number("physics_seconds", p.seconds, defaults.seconds);
+  number("physics_timestep", p.timestep, defaults.timestep);
+  number("physics_position_tolerance", p.positionTolerance, defaults.positionTolerance);
+  number("physics_rotation_tolerance", p.rotationTolerance, defaults.rotationTolerance);
+  if (p.retry != defaults.retry) {
+    keys += keys.empty() ? "\"physics_retry\": true" : ", \"physics_retry\": true";
+  }
+  number("physics_max_draws", p.maxDraws, defaults.maxDraws);
+  if (p.groundZ) {
+    number("ground_z", *p.groundZ, std::numeric_limits<double>::quiet_NaN());
+  }
+  number("density", p.density, defaults.density);
+  if (!keys.empty()) {
+    out += ", \"physics\": {" + keys + "}";
+  }
+}
+
 }  // namespace
 
 std::string configToJson(const SceneConfig& config) {
@@ -210,6 +246,10 @@ std::string configToJson(const SceneConfig& config) {
     appendBounds(out, object);
     out += ", \"init_orientation\": ";
     appendVector(out, object.initOrientation.coeffs().data(), 4);
+    if (object.density > 0.0) {
+      out += ", \"density\": ";
+      appendNumber(out, object.density);
+    }
     out += '}';
   }
   out += "}, \"fixtures\": [";
@@ -232,6 +272,7 @@ std::string configToJson(const SceneConfig& config) {
   }
   out += "], \"sampler\": ";
   appendSampler(out, *config.root);
+  appendPhysics(out, config.physics);
   out += '}';
   return out;
 }
@@ -280,6 +321,9 @@ void appendSceneJson(std::string& out, const SceneResult& scene) {
   out += ", \"seed\": ";
   appendInteger(out, scene.seed);
   out += scene.success ? ", \"success\": true" : ", \"success\": false";
+  if (scene.physicsMode != PhysicsMode::None) {
+    out += scene.stable ? ", \"stable\": true" : ", \"stable\": false";
+  }
   out += ", \"message\": ";
   appendJsonString(out, scene.message);
   out += ", \"placements\": [";
@@ -304,8 +348,25 @@ void appendSceneJson(std::string& out, const SceneResult& scene) {
       }
       appendNumber(out, q[k]);
     }
-    out += "], \"attempts\": ";
+    out += ']';
+    const bool simulated = scene.simulated && i < scene.physics.size();
+    if (simulated && scene.physicsMode == PhysicsMode::Settle) {
+      const PhysicsOutcome& o = scene.physics[i];
+      out += ", \"sampled_position\": ";
+      appendVector(out, o.sampledPosition.data(), 3);
+      out += ", \"sampled_orientation\": ";
+      appendVector(out, o.sampledOrientation.coeffs().data(), 4);
+    }
+    out += ", \"attempts\": ";
     appendInteger(out, p.attempts);
+    if (simulated) {
+      const PhysicsOutcome& o = scene.physics[i];
+      out += ", \"moved\": ";
+      appendNumber(out, o.moved);
+      out += ", \"turned\": ";
+      appendNumber(out, o.turned);
+      out += o.fallen ? ", \"fallen\": true" : ", \"fallen\": false";
+    }
     out += '}';
   }
   out += "]}";

@@ -132,18 +132,46 @@ SampleRequest toSampleRequest(const SamplePlacements::Request& req) {
           "CHECK_RADIUS_AND_FCL (3), got " +
           std::to_string(static_cast<int>(req.collision_check)));
   }
+  switch (req.physics) {
+    case SamplePlacements::Request::PHYSICS_DEFAULT:
+      break;
+    case SamplePlacements::Request::PHYSICS_NONE:
+      out.physics = PhysicsMode::None;
+      break;
+    case SamplePlacements::Request::PHYSICS_CHECK:
+      out.physics = PhysicsMode::Check;
+      break;
+    case SamplePlacements::Request::PHYSICS_SETTLE:
+      out.physics = PhysicsMode::Settle;
+      break;
+    default:
+      throw RequestError(
+          "physics must be PHYSICS_DEFAULT (0), PHYSICS_NONE (1), PHYSICS_CHECK (2) or "
+          "PHYSICS_SETTLE (3), got " +
+          std::to_string(static_cast<int>(req.physics)));
+  }
   return out;
 }
 
 placement_samplers::Scene toSceneMsg(const SceneResult& scene) {
   placement_samplers::Scene msg;
   msg.placements.reserve(scene.placements.size());
-  for (const ObjectPlacement& p : scene.placements) {
+  msg.simulated = scene.simulated;
+  msg.stable = scene.stable;
+  for (std::size_t i = 0; i < scene.placements.size(); ++i) {
+    const ObjectPlacement& p = scene.placements[i];
     placement_samplers::Placement m;
     m.name = p.name;
     m.sampler = p.sampler;
     m.pose = toPoseMsg(p.position, p.orientation);
     m.attempts = p.attempts;
+    if (scene.simulated && i < scene.physics.size()) {
+      const PhysicsOutcome& o = scene.physics[i];
+      m.moved = o.moved;
+      m.turned = o.turned;
+      m.fallen = o.fallen;
+      m.sampled_pose = toPoseMsg(o.sampledPosition, o.sampledOrientation);
+    }
     msg.placements.push_back(std::move(m));
   }
   return msg;

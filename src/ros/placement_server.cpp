@@ -206,8 +206,10 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     const std::uint64_t placements = count * generator->placementsPerScene(prepared);
     const std::uint64_t seed = request.seed != 0 ? request.seed : nextSeed();
     response.seed = seed;
-    // Threads pay off only for large batches; the answer is the same either way.
-    const unsigned threads = count >= 256 ? 0 : 1;
+    // Threads pay off only for large batches (or a few simulated scenes, milliseconds each);
+    // the answer is the same either way.
+    const bool simulated = prepared.physics.mode != PhysicsMode::None;
+    const unsigned threads = count >= 256 || (simulated && count >= 8) ? 0 : 1;
     std::vector<SceneResult> scenes =
         generator->sampleSceneRange(prepared, seed, request.first_scene, count, threads);
     if (placements >= kTrimAfterPlacements) {

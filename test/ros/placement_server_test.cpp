@@ -368,6 +368,9 @@ TEST_F(PlacementServerTest, BadRequestsAnswerWithTheReason) {
       {"bad collision_check", [](auto& r) { r.collision_check = 9; },
        "collision_check must be CHECK_DEFAULT (0), CHECK_RADIUS (1), CHECK_FCL (2) or "
        "CHECK_RADIUS_AND_FCL (3), got 9"},
+      {"bad physics", [](auto& r) { r.physics = 9; },
+       "physics must be PHYSICS_DEFAULT (0), PHYSICS_NONE (1), PHYSICS_CHECK (2) or "
+       "PHYSICS_SETTLE (3), got 9"},
       {"too many scenes", [](auto& r) { r.num_scenes = 501; },
        "num_scenes 501 exceeds max_scenes_per_request (500)"},
       {"reference and point",
@@ -393,6 +396,50 @@ TEST_F(PlacementServerTest, BadRequestsAnswerWithTheReason) {
   }
   // Still serving.
   EXPECT_TRUE(call(seeded(3)).response.success);
+}
+
+// physics settle per request: simulated scenes with the sampled poses kept, settled poses in
+// the answer and in the tf frames; physics none (the configuration's) simulates nothing.
+TEST_F(PlacementServerTest, PhysicsSettleReturnsSettledScenes) {
+  SamplePlacements::Request r = seeded(515, 3);
+  r.sampler = "TableSampler";
+  r.physics = SamplePlacements::Request::PHYSICS_SETTLE;
+  const SamplePlacements srv = call(r);
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ASSERT_EQ(srv.response.scenes.size(), 3u);
+  SamplePlacements::Request dry = seeded(515, 3);
+  dry.dry_run = true;  // the frames keep showing the settled scene
+  const SamplePlacements plain = call(dry);
+  for (std::size_t s = 0; s < 3; ++s) {
+    const auto& scene = srv.response.scenes[s];
+    EXPECT_TRUE(scene.simulated);
+    EXPECT_FALSE(plain.response.scenes[s].simulated);
+    ASSERT_EQ(scene.placements.size(), 3u);
+    for (const auto& p : scene.placements) {
+      // Sampled 1 cm above the table (z_offset): settled on it, sampled pose kept.
+      EXPECT_GT(p.sampled_pose.position.z - p.pose.position.z, 0.005) << p.name;
+      EXPECT_NEAR(p.sampled_pose.position.x, p.pose.position.x, 0.01) << p.name;
+      const auto& q = p.sampled_pose.orientation;
+      EXPECT_NEAR(std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w), 1.0, 1e-9) << p.name;
+      EXPECT_LT(p.moved, 0.01) << p.name;
+      EXPECT_FALSE(p.fallen) << p.name;
+    }
+  }
+  // The frames show the settled poses.
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  const auto& cube = byName(srv.response.scenes[0]).at("cube");
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(10.0);
+  bool same = false;
+  while (!same && ros::WallTime::now() < until) {
+    try {
+      const auto t = buffer.lookupTransform("world", "test/cube", ros::Time(0), ros::Duration(1.0));
+      same = t.transform.translation.z == cube.pose.position.z;
+    } catch (const tf2::TransformException&) {
+    }
+    ros::WallDuration(0.05).sleep();
+  }
+  EXPECT_TRUE(same);
 }
 
 TEST_F(PlacementServerTest, FramesReachATfListener) {

@@ -299,7 +299,9 @@ TEST(ConfigBuilder, UnknownKeysNameThePath) {
             "configuration: unknown key 'sed' (expected one of: frame_id, tf_prefix, seed, "
             "collision_check, collision_margin, max_attempts, objects, fixtures, samplers, hide, "
             "threads, max_scenes_per_request, max_request_seconds, max_fixtures_per_request, "
-            "max_placements_per_request, tf_static, tf_rate)");
+            "max_placements_per_request, tf_static, tf_rate, physics, physics_seconds, "
+            "physics_timestep, physics_position_tolerance, physics_rotation_tolerance, "
+            "physics_retry, physics_max_draws, ground_z, density)");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, x_rnage: [0, 1]}\n"),
             "samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, x_range, "
             "y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
@@ -307,11 +309,11 @@ TEST(ConfigBuilder, UnknownKeysNameThePath) {
             "keep_out, strategy)");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [1, 1, 1], radius: 1}\n"),
             "objects.cube: unknown key 'radius' (expected one of: shape, size, horizontal_radius, "
-            "bottom_offset, top_offset, init_orientation)");
+            "bottom_offset, top_offset, init_orientation, density)");
   EXPECT_EQ(
       buildError("objects:\n  ball: {shape: sphere, radius: 1, length: 1}\n"),
       "objects.ball: unknown key 'length' (expected one of: shape, radius, horizontal_radius, "
-      "bottom_offset, top_offset, init_orientation)");
+      "bottom_offset, top_offset, init_orientation, density)");
   EXPECT_EQ(
       buildError(kObjects + "  - {name: desk, object: cube, pos: [0, 0, 0]}\n"),
       "fixtures[1]: unknown key 'pos' (expected one of: name, object, position, orientation)");

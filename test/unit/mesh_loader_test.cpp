@@ -362,7 +362,7 @@ TEST(MeshLoader, MeshObjectErrors) {
             "objects.part.mesh: expected a string, got an integer (3)");
   EXPECT_EQ(meshObjectError("{shape: mesh, mesh: meshes/tetra.stl, size: [1, 1, 1]}"),
             "objects.part: unknown key 'size' (expected one of: shape, mesh, scale, "
-            "horizontal_radius, bottom_offset, top_offset, init_orientation)");
+            "horizontal_radius, bottom_offset, top_offset, init_orientation, density)");
   EXPECT_EQ(meshObjectError("{shape: mesh, mesh: package://nowhere/a.stl}"),
             "objects.part.mesh: object 'part': 'package://nowhere/a.stl': package 'nowhere' not "
             "found by the package resolver");

@@ -229,7 +229,7 @@ TEST(UrdfGeometry, ConfigurationErrors) {
             "objects.part: give either urdf_file or urdf_param, not both");
   EXPECT_EQ(configError("{urdf_file: urdf/bin.urdf, shape: box}"),
             "objects.part: unknown key 'shape' (expected one of: urdf_file, urdf_param, link, "
-            "horizontal_radius, bottom_offset, top_offset, init_orientation)");
+            "horizontal_radius, bottom_offset, top_offset, init_orientation, density)");
   EXPECT_EQ(configError("{urdf_file: urdf/chain.urdf, link: ''}"),
             "objects.part.link: expected a link name");
   EXPECT_EQ(configError("{urdf_file: urdf/nope.urdf}"),

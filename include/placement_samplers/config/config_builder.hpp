@@ -25,4 +25,8 @@ std::shared_ptr<SceneConfig> buildSceneConfig(const ConfigNode& root, const Buil
 /// @throw ConfigError naming @p node when it is not radius, fcl or radius_and_fcl
 CollisionMode parseCollisionMode(const ConfigNode& node);
 
+/// Parses a physics mode name.
+/// @throw ConfigError naming @p node when it is not none, check or settle
+PhysicsMode parsePhysicsMode(const ConfigNode& node);
+
 }  // namespace placement_samplers

@@ -30,6 +30,8 @@ struct ObjectModel {
   double horizontalRadius = 0.0;                           ///< [m]
   /// True when horizontalRadius bounds the geometry, so circles may skip exact checks.
   bool radiusBoundsGeometry = true;
+  /// Its own density for physics [kg/m^3]; 0 = the configuration's `density`.
+  double density = 0.0;
   ObjectOverrides overrides;  ///< kept so that a fixture's pose can re-derive the bounds
 };
 

@@ -22,6 +22,10 @@ struct NpzOptions {
   /// Zip64 headers even when the file stays below 4 GB (they are used anyway above it); for
   /// tests, which cannot afford 4 GB files.
   bool forceZip64 = false;
+  /// With check or settle: also `stable` [K] bool, `moved` and `turned` [K, n] float64 [m],
+  /// [rad] and `fallen` [K, n] bool (NaN, NaN, false where a scene was not simulated); with
+  /// settle also `sampled_position` [K, n, 3] and `sampled_orientation` [K, n, 4].
+  PhysicsMode physics = PhysicsMode::None;
 };
 
 /// Writes scenes into numpy's .npz format (a stored zip of .npy arrays, what numpy.load reads),

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "placement_samplers/geometry/object_model.hpp"
+#include "placement_samplers/physics/physics_settings.hpp"
 
 namespace placement_samplers {
 
@@ -55,8 +56,15 @@ struct SceneResult {
   std::uint64_t seed = 0;   ///< the request seed
   std::uint64_t index = 0;  ///< the scene index within the request
   bool success = false;
-  std::string message;                      ///< empty on success
+  // Physics (README, "Physics"), in success's padding; ObjectPlacement stays as it was.
+  PhysicsMode physicsMode = PhysicsMode::None;  ///< the request's mode
+  bool simulated = false;  ///< the scene was simulated (placed, and a mode other than none)
+  bool stable = false;     ///< simulated, and no object moved, turned or fell too far
+  std::string message;     ///< empty on success
   std::vector<ObjectPlacement> placements;  ///< new placements in sampling order (no fixtures)
+  /// One per placement when simulated, else empty. With PhysicsMode::Settle the placements
+  /// hold the settled poses and these the sampled ones. Hidden objects: 0, 0, not fallen.
+  std::vector<PhysicsOutcome> physics;
 };
 
 }  // namespace placement_samplers

@@ -12,6 +12,7 @@
 #include "placement_samplers/collision/collision_checker.hpp"
 #include "placement_samplers/limits.hpp"
 #include "placement_samplers/geometry/object_model.hpp"
+#include "placement_samplers/physics/physics_settings.hpp"
 #include "placement_samplers/sampling/sequential_composite_sampler.hpp"
 
 namespace placement_samplers {
@@ -54,6 +55,9 @@ struct SceneConfig {
   /// re-sent at tfRate (frames of an older scene vanish).
   bool tfStatic = false;
   double tfRate = 10.0;  ///< how often the current scene's frames are sent on /tf [Hz]
+
+  /// MuJoCo's check or settling of each sampled scene (README, "Physics").
+  PhysicsSettings physics;
 
   /// What the builder found suspicious but accepted (objects that nothing places, ...): the
   /// CLI prints them on stderr, the node logs them as warnings.

@@ -34,7 +34,10 @@ struct SampleRequest {
   /// Time limit of the whole request, from the start of SceneGenerator::prepare() [s];
   /// 0 = none; at most limits::kRequestSeconds.
   double maxSeconds = 0.0;
+  std::optional<PhysicsMode> physics;  ///< unset = as configured
 };
+
+class ScenePhysics;
 
 /// A request checked against the configuration, ready to sample any number of scenes.
 struct PreparedRequest {
@@ -50,6 +53,11 @@ struct PreparedRequest {
   /// What the caller should know although the request is valid, e.g. a call-level reference
   /// that no sampler takes because each sets its own in sample_args.
   std::vector<std::string> notes;
+  /// The configuration's physics settings with the request's mode.
+  PhysicsSettings physics;
+  /// The request's MuJoCo model, built on first use (none when physics.mode is none) and
+  /// shared by the threads that sample it.
+  std::shared_ptr<ScenePhysics> physicsModel;
 };
 
 /// Scenes @p first .. @p first + @p count - 1 must have indices below 2^64.

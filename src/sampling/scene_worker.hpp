@@ -1,0 +1,137 @@
+#pragma once
+// SceneGenerator's per-thread worker: engines, checker, context and the physics step, reused
+// from scene to scene. Private to the core (scene_generator.cpp).
+
+#include <array>
+#include <chrono>
+#include <memory>
+#include <optional>
+
+#include "placement_samplers/collision/make_collision_checker.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
+#include "sampling/scene_physics.hpp"
+
+namespace placement_samplers {
+
+/// Per-thread state, reused from scene to scene: engines, checker and buffers.
+class SceneGenerator::Worker {
+ public:
+  /// Scenes per chunk: a thread takes this many at a time.
+  static constexpr std::size_t kChunk = 16;
+
+  Worker(const PreparedRequest& request, double margin)
+      : request_(request),
+        checker_(makeCollisionChecker(request.collisionCheck, margin)),
+        context_(engine_, *checker_, request.maxAttempts),
+        objects_(request.sampler->objects().size()) {
+    if (request.physicsModel) {
+      physics_ = std::make_unique<PhysicsStep>(*request.physicsModel);  // compiles it once
+    }
+  }
+
+  void setDeadline(std::optional<std::chrono::steady_clock::time_point> deadline) {
+    context_.setDeadline(deadline);
+  }
+  bool expired() const { return context_.expired(); }
+
+  /// Scene @p index of request seed @p seed (numpy's default_rng([seed, index])) into
+  /// @p result, whose buffers are reused.
+  void run(std::uint64_t seed, std::uint64_t index, SceneResult& result) {
+    engine_ = sceneEngine(seed, index);
+    context_.setScene(seed, index);
+    sample(result);
+    result.seed = seed;
+    result.index = index;
+  }
+
+  /// Scenes @p index .. @p index + @p count - 1 (count <= kChunk) into @p results, as run()
+  /// would give them; once the time limit has passed, the rest come back "not sampled".
+  void runChunk(std::uint64_t seed, std::uint64_t index, std::size_t count, SceneResult* results) {
+    // Seeded together: each seeding is a chain of dependent multiplications that the CPU
+    // overlaps with the others' (Pcg64::forScenes).
+    Engine::forScenes(seed, index, count, chunkEngines_.data());
+    for (std::size_t k = 0; k < count; ++k) {
+      SceneResult& result = results[k];
+      result.seed = seed;
+      result.index = index + k;
+      if (expired()) {
+        result.success = false;
+        result.message = "not sampled: the request ran out of time";
+        result.placements.clear();
+        result.physicsMode = request_.physics.mode;
+        result.simulated = result.stable = false;
+        result.physics.clear();
+        continue;
+      }
+      engine_ = chunkEngines_[k];
+      context_.setScene(seed, index + k);
+      sample(result);
+    }
+  }
+
+ private:
+  /// Samples the scene, then simulates it when the request asks; with physics_retry an
+  /// unstable scene is drawn again from where the engine stopped, up to physics_max_draws.
+  void sample(SceneResult& result) {
+    result.physicsMode = request_.physics.mode;
+    result.simulated = result.stable = false;
+    result.physics.clear();
+    draw(result);
+    if (!physics_) {
+      return;
+    }
+    for (std::uint32_t draws = 1; result.success; ++draws) {
+      const PhysicsStatus status = physics_->run(result, request_.deadline);
+      if (status == PhysicsStatus::Stable || status == PhysicsStatus::TimedOut ||
+          !request_.physics.retry) {
+        return;
+      }
+      if (draws >= request_.physics.maxDraws) {
+        result.success = false;
+        result.message = PhysicsStep::unstableMessage(result, draws);
+        return;
+      }
+      result.simulated = result.stable = false;
+      result.physics.clear();
+      draw(result);
+    }
+  }
+
+  void draw(SceneResult& result) {
+    context_.clear();
+    result.success = false;
+    result.message.clear();
+    const std::vector<FixtureSpec>& fixtures = request_.fixtures;
+    for (std::size_t i = 0; i < fixtures.size(); ++i) {
+      // Adding thousands of fixtures to FCL's broadphase takes long too: the clock covers it.
+      if ((i & 63u) == 63u && expired()) {
+        result.message = "not sampled: the request ran out of time while adding its " +
+                         std::to_string(fixtures.size()) + " fixtures";
+        result.placements.clear();
+        return;
+      }
+      const FixtureSpec& f = fixtures[i];
+      context_.addFixture(f.name, f.object.get(), f.position, f.orientation);
+    }
+    // The placements are built in the buffer the previous swap gave the context: a result's
+    // from the caller's previous block, or a fresh one (one allocation of the right size).
+    context_.placements().reserve(objects_);
+    result.success = request_.sampler->sample(context_, request_.reference, request_.onTop);
+    if (!result.success) {
+      result.message = context_.failure() ? context_.failure()->message : "sampling failed";
+    }
+    // The result takes the placements and gives the context its old buffer: no copy, and no
+    // allocation once the caller's results have been filled before.
+    result.placements.swap(context_.placements());
+  }
+
+  const PreparedRequest& request_;
+  Engine engine_;  ///< the scene's stream, which context_ draws from
+  std::array<Engine, kChunk> chunkEngines_;
+  std::unique_ptr<CollisionChecker> checker_;
+  SampleContext context_;
+  std::size_t objects_;                   ///< objects the sampler places
+  std::unique_ptr<PhysicsStep> physics_;  ///< none when the request's physics is none
+};
+
+}  // namespace placement_samplers
