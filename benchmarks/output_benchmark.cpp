@@ -21,26 +21,11 @@
 #include "placement_samplers/output/npz_writer.hpp"
 #include "placement_samplers/output/scene_json.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
+#include "clutter_scene.hpp"
 
 namespace ps = placement_samplers;
 
 namespace {
-
-std::string clutterYaml(int n) {
-  std::ostringstream y;
-  y << "collision_check: radius\nmax_attempts: 5000\nobjects:\n";
-  for (int i = 0; i < n; ++i) {
-    y << "  cyl" << i << ": {shape: cylinder, radius: 0.03, length: 0.1}\n";
-  }
-  y << "samplers:\n  - name: ClutterSampler\n    objects: [";
-  for (int i = 0; i < n; ++i) {
-    y << (i ? ", " : "") << "cyl" << i;
-  }
-  y << "]\n    x_range: [-0.3, 0.3]\n    y_range: [-0.3, 0.3]\n    rotation_axis: z\n"
-       "    ensure_object_boundary_in_range: true\n    ensure_valid_placement: true\n"
-       "    reference_pos: [0.0, 0.0, 0.8]\n";
-  return y.str();
-}
 
 double seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -74,7 +59,7 @@ int main(int argc, char** argv) {
     }
   }
   const ps::SceneGenerator generator(
-      ps::buildSceneConfig(ps::parseYaml(clutterYaml(objects), "clutter")));
+      ps::buildSceneConfig(ps::parseYaml(bench::clutterYaml(objects), "clutter")));
   const ps::PreparedRequest request = generator.prepare(ps::SampleRequest());
   std::vector<std::string> names;
   for (const ps::ObjectPtr& object : request.sampler->objects()) {

@@ -65,23 +65,6 @@ double batchNs(const Options& options, const Setup& setup, unsigned threads) {
   });
 }
 
-std::string clutterYaml(int n, double half) {
-  std::ostringstream y;
-  y << "collision_check: radius\nmax_attempts: 5000\nobjects:\n";
-  for (int i = 0; i < n; ++i) {
-    y << "  cyl" << i << ": {shape: cylinder, radius: 0.03, length: 0.1}\n";
-  }
-  y << "samplers:\n  - name: ClutterSampler\n    objects: [";
-  for (int i = 0; i < n; ++i) {
-    y << (i ? ", " : "") << "cyl" << i;
-  }
-  y << "]\n    x_range: [" << -half << ", " << half << "]\n    y_range: [" << -half << ", " << half
-    << "]\n"
-       "    rotation_axis: z\n    ensure_object_boundary_in_range: true\n"
-       "    ensure_valid_placement: true\n    reference_pos: [0.0, 0.0, 0.8]\n    z_offset: 0.0\n";
-  return y.str();
-}
-
 bool fclAvailable() {
   try {
     ps::makeCollisionChecker(ps::CollisionMode::Fcl, 0.0);

@@ -32,6 +32,7 @@
 #include "placement_samplers/sampling/sample_context.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/output/scene_json.hpp"
+#include "../clutter_scene.hpp"
 
 namespace ps = placement_samplers;
 
@@ -200,12 +201,6 @@ void sampleInBlocks(const Setup& setup, std::uint64_t n, unsigned threads, OnBlo
 
 /// Time per scene [ns] of sampleInBlocks on @p threads threads (results built, then freed).
 double batchNs(const Options& options, const Setup& setup, unsigned threads);
-
-/// The clutter scene: @p n cylinders (radius 0.03 m, height 0.1 m) in one sampler over a
-/// square region of half width @p half [m] (0.6 m x 0.6 m by default),
-/// ensure_object_boundary_in_range and ensure_valid_placement on. Built from YAML text through
-/// the same builder as the files in config/.
-std::string clutterYaml(int n, double half = 0.3);
 
 /// True when this build offers collision_check fcl.
 bool fclAvailable();
