@@ -52,6 +52,20 @@ class SampleClientTest(unittest.TestCase):
         self.assertEqual(third, [three[2]])
         self.assertTrue(third[0].startswith("2\n"))
 
+    def test_example_client_settles_with_physics(self):
+        out = subprocess.run([sys.executable, CLIENT, "--seed", "5", "--dry-run", "--physics",
+                              "settle"], capture_output=True, text=True, timeout=60)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        self.assertIn("scene 0  stable: True", out.stdout)
+        self.assertIn("moved ", out.stdout)
+        plain = subprocess.run([sys.executable, CLIENT, "--seed", "5", "--dry-run"],
+                               capture_output=True, text=True, timeout=60)
+        self.assertNotIn("stable:", plain.stdout)
+        bad = subprocess.run([sys.executable, CLIENT, "--physics", "wobble"],
+                             capture_output=True, text=True, timeout=60)
+        self.assertEqual(bad.returncode, 2)
+        self.assertIn("--physics: invalid choice: 'wobble'", bad.stderr)
+
     def test_example_client_refuses_a_negative_seed_with_usage(self):
         out = subprocess.run([sys.executable, CLIENT, "--seed", "-1"],
                              capture_output=True, text=True, timeout=60)
