@@ -11,6 +11,29 @@ Eigen::Vector2d vector2(const ConfigNode& n) {
   return Eigen::Vector2d(v[0], v[1]);
 }
 
+/// The shape's `center`, or its British spelling `centre` (kept as an alias); not both.
+const ConfigNode* centerNode(const ConfigNode& node) {
+  const ConfigNode* center = node.get("center");
+  const ConfigNode* centre = node.get("centre");
+  if (center && centre) {
+    centre->fail("'centre' is an alias of 'center': give one of them");
+  }
+  return center ? center : centre;
+}
+
+/// `center` for the shapes that have one; `centre` is listed only when the user wrote it.
+void addCenterKeys(const ConfigNode& node, std::vector<std::string>& keys) {
+  keys.push_back("center");
+  if (node.get("centre")) {
+    keys.push_back("centre");
+  }
+}
+
+Eigen::Vector2d centerOf(const ConfigNode& node) {
+  const ConfigNode* c = centerNode(node);
+  return c ? vector2(*c) : Eigen::Vector2d::Zero();
+}
+
 RegionShape parseShape(const ConfigNode& node, bool keepOut) {
   if (!node.isMap()) {
     node.fail(
@@ -29,22 +52,22 @@ RegionShape parseShape(const ConfigNode& node, bool keepOut) {
     node.checkKeys(keys);
     s = RegionShape::rectangle(parseRange(node.at("x_range")), parseRange(node.at("y_range")));
   } else if (name == "rotated_rectangle") {
-    keys.insert(keys.end(), {"centre", "size", "yaw"});
+    addCenterKeys(node, keys);
+    keys.insert(keys.end(), {"size", "yaw"});
     node.checkKeys(keys);
-    s = RegionShape::rotatedRectangle(
-        node.get("centre") ? vector2(node.at("centre")) : Eigen::Vector2d::Zero(),
-        vector2(node.at("size")), node.get("yaw") ? node.at("yaw").asDouble() : 0.0);
+    s = RegionShape::rotatedRectangle(centerOf(node), vector2(node.at("size")),
+                                      node.get("yaw") ? node.at("yaw").asDouble() : 0.0);
   } else if (name == "disk") {
-    keys.insert(keys.end(), {"centre", "radius"});
+    addCenterKeys(node, keys);
+    keys.insert(keys.end(), {"radius"});
     node.checkKeys(keys);
-    s = RegionShape::disk(node.get("centre") ? vector2(node.at("centre")) : Eigen::Vector2d::Zero(),
-                          node.at("radius").asDouble());
+    s = RegionShape::disk(centerOf(node), node.at("radius").asDouble());
   } else if (name == "annulus") {
-    keys.insert(keys.end(), {"centre", "inner_radius", "outer_radius"});
+    addCenterKeys(node, keys);
+    keys.insert(keys.end(), {"inner_radius", "outer_radius"});
     node.checkKeys(keys);
-    s = RegionShape::annulus(
-        node.get("centre") ? vector2(node.at("centre")) : Eigen::Vector2d::Zero(),
-        node.at("inner_radius").asDouble(), node.at("outer_radius").asDouble());
+    s = RegionShape::annulus(centerOf(node), node.at("inner_radius").asDouble(),
+                             node.at("outer_radius").asDouble());
   } else if (name == "polygon") {
     keys.insert(keys.end(), {"vertices"});
     node.checkKeys(keys);
@@ -59,7 +82,7 @@ RegionShape parseShape(const ConfigNode& node, bool keepOut) {
               quoteText(name));
   }
   if (const auto problem = findShapeProblem(s)) {
-    const ConfigNode* where = node.get(problem->key);
+    const ConfigNode* where = problem->key == "center" ? centerNode(node) : node.get(problem->key);
     (where ? *where : node).fail(problem->message);
   }
   return s;

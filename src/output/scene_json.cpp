@@ -64,7 +64,7 @@ void appendShape(std::string& out, const RegionShape& s, const char* frame) {
       appendVector(out, s.yRange.data(), 2);
       break;
     case RegionShape::Kind::RotatedRectangle:
-      key("centre");
+      key("center");
       appendVector(out, s.centre.data(), 2);
       key("size");
       appendVector(out, s.size.data(), 2);
@@ -72,13 +72,13 @@ void appendShape(std::string& out, const RegionShape& s, const char* frame) {
       appendNumber(out, s.yaw);
       break;
     case RegionShape::Kind::Disk:
-      key("centre");
+      key("center");
       appendVector(out, s.centre.data(), 2);
       key("radius");
       appendNumber(out, s.radius);
       break;
     case RegionShape::Kind::Annulus:
-      key("centre");
+      key("center");
       appendVector(out, s.centre.data(), 2);
       key("inner_radius");
       appendNumber(out, s.innerRadius);

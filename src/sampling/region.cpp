@@ -203,7 +203,7 @@ std::optional<ShapeProblem> findShapeProblem(const RegionShape& s) {
     return polygonProblem(s.vertices);
   }
   if (!bounded(s.centre)) {
-    return ShapeProblem{"centre", "expected [x, y] " + boundText() + ", got " + text(s.centre)};
+    return ShapeProblem{"center", "expected [x, y] " + boundText() + ", got " + text(s.centre)};
   }
   if (s.kind == Kind::RotatedRectangle) {
     if (auto p = lengthProblem("size", s.size.x(), false)) {

@@ -69,11 +69,28 @@ TEST(RegionSampler, FarKeepOutChangesNothing) {
       "samplers:\n  - {name: S, objects: [can, cube, plate], x_range: [-0.2, 0.2], "
       "y_range: [-0.2, 0.2], rotation: [0, 1]";
   const Scenes a = scenes(base + "}\n", 300);
-  const Scenes b = scenes(base + ", keep_out: [{shape: disk, centre: [5, 5], radius: 1}]}\n", 300);
+  const Scenes b = scenes(base + ", keep_out: [{shape: disk, center: [5, 5], radius: 1}]}\n", 300);
   for (std::size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].success, b[i].success);
     test::expectSamePlacements(a[i].placements, b[i].placements);
   }
+}
+
+/// The documented key `center` and its alias `centre` give the same scenes.
+TEST(RegionSampler, CentreIsAnAliasOfCenter) {
+  const std::string base = "samplers:\n  - {name: S, objects: [can, cube], region: {shape: disk, ";
+  const Scenes a = scenes(base + "center: [0.05, -0.02], radius: 0.3}}\n", 200);
+  const Scenes b = scenes(base + "centre: [0.05, -0.02], radius: 0.3}}\n", 200);
+  const Scenes c = scenes(base + "radius: 0.3}}\n", 200);
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t differentFromOrigin = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].success, b[i].success);
+    test::expectSamePlacements(a[i].placements, b[i].placements);
+    differentFromOrigin +=
+        a[i].placements.front().position.x() != c[i].placements.front().position.x();
+  }
+  EXPECT_EQ(differentFromOrigin, a.size());  // the key is read, not ignored
 }
 
 /// Every placement keeps its disk inside the region and out of every zone (sampler frame
@@ -86,7 +103,7 @@ samplers:
     objects: [can, cube]
     region: {shape: annulus, inner_radius: 0.05, outer_radius: 0.3}
     keep_out:
-      - {shape: rotated_rectangle, centre: [0.1, 0], size: [0.2, 0.08], yaw: 0.5}
+      - {shape: rotated_rectangle, center: [0.1, 0], size: [0.2, 0.08], yaw: 0.5}
       - {shape: polygon, vertices: [[0.3, -0.4], [0.7, -0.4], [0.5, -0.3]], frame: world}
     ensure_valid_placement: false
     sample_args: {reference: table}
@@ -166,7 +183,19 @@ TEST(RegionSampler, ConfigurationErrorsNameTheParameter) {
             "samplers[0].region.shape: expected rectangle, rotated_rectangle, disk, annulus or "
             "polygon, got 'circle'");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, region: {shape: disk, size: 1}}\n"),
-            "samplers[0].region: unknown key 'size' (expected one of: shape, centre, radius)");
+            "samplers[0].region: unknown key 'size' (expected one of: shape, center, radius)");
+  // `centre` is an alias of `center`: listed when the user wrote it, never both.
+  EXPECT_EQ(
+      buildError("samplers:\n  - {name: S, region: {shape: disk, centre: [0, 0], size: 1}}\n"),
+      "samplers[0].region: unknown key 'size' (expected one of: shape, center, centre, "
+      "radius)");
+  EXPECT_EQ(buildError("samplers:\n  - {name: S, region: {shape: disk, center: [0, 0], centre: "
+                       "[0, 0], radius: 1}}\n"),
+            "samplers[0].region.centre: 'centre' is an alias of 'center': give one of them");
+  EXPECT_EQ(buildError("samplers:\n  - {name: S, keep_out: [{shape: disk, centre: [2e6, 0], "
+                       "radius: 1}]}\n"),
+            "samplers[0].keep_out[0].centre: expected [x, y] within [-1e+06, 1e+06] m, got [2e+06, "
+            "0]");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, region: {shape: disk}}\n"),
             "samplers[0].region: missing required key 'radius'");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, x_range: [0, 1], region: {shape: disk, "
@@ -198,7 +227,7 @@ samplers:
   - name: S
     objects: [cube]
     region: {shape: polygon, vertices: [[0, 0], [0.4, 0], [0.4, 0.4], [0.2, 0.1], [0, 0.4]]}
-    keep_out: [{shape: disk, centre: [1, 2], radius: 0.1, frame: world}]
+    keep_out: [{shape: disk, center: [1, 2], radius: 0.1, frame: world}]
     reference_pos: [0.5, 0, 0.8]
     z_offset: 0.01
 )";
@@ -206,7 +235,7 @@ samplers:
   const std::string json = configToJson(*config);
   EXPECT_NE(json.find("\"max_attempts\": 5000, \"region\": {\"shape\": \"polygon\", \"vertices\": "
                       "[[0, 0], [0.4, 0], [0.4, 0.4], [0.2, 0.1], [0, 0.4]]}, \"keep_out\": "
-                      "[{\"shape\": \"disk\", \"centre\": [1, 2], \"radius\": 0.1, \"frame\": "
+                      "[{\"shape\": \"disk\", \"center\": [1, 2], \"radius\": 0.1, \"frame\": "
                       "\"world\"}], \"hides\": false}"),
             std::string::npos)
       << json;

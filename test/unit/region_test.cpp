@@ -361,7 +361,7 @@ TEST(RegionShapes, Problems) {
   EXPECT_EQ(problem(RegionShape::rectangle(V(1, 0), V(0, 1))),
             "x_range: expected [min, max] with min <= max, got [1, 0]");
   EXPECT_EQ(problem(RegionShape::disk(V(2e6, 0), 1.0)),
-            "centre: expected [x, y] within [-1e+06, 1e+06] m, got [2e+06, 0]");
+            "center: expected [x, y] within [-1e+06, 1e+06] m, got [2e+06, 0]");
   // Either winding is a valid polygon.
   EXPECT_EQ(problem(RegionShape::polygon({{0, 0}, {0, 1}, {1, 0}})), "none");
   EXPECT_EQ(problem(RegionShape::polygon({{0, 0}, {1, 0}, {0, 1}})), "none");
