@@ -17,6 +17,7 @@
 #include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/text.hpp"
 #include "placement_samplers/geometry/unit_quaternion.hpp"
+#include "placement_samplers/sampling/packing_bound.hpp"
 #include "sampling/parallel.hpp"
 #include "sampling/scene_worker.hpp"
 
@@ -201,6 +202,11 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
         "the call's on_top was not used: every sampler it would reach sets its own in "
         "sample_args");
   }
+  // A sampler whose objects cannot fit at any packing fails every scene: say so at once.
+  if (auto why = findOverfullSampler(*prepared.sampler, prepared.reference, prepared.onTop,
+                                     prepared.collisionCheck)) {
+    throw RequestError(*why);
+  }
   prepared.physics = config.physics;
   prepared.physics.mode = request.physics.value_or(config.physics.mode);
   if (prepared.physics.mode != PhysicsMode::None) {
@@ -274,6 +280,34 @@ void SceneGenerator::sampleSceneRange(const PreparedRequest& request, std::uint6
                                       std::vector<SceneResult>& results) const {
   checkSceneRange(first, count);
   results.resize(count);
+  sampleInto(request, seed, first, count, threads, results.data());
+}
+
+bool SceneGenerator::sampleSceneRangeOrGiveUp(const PreparedRequest& request, std::uint64_t seed,
+                                              std::uint64_t first, std::uint64_t count,
+                                              unsigned threads, std::uint64_t probe,
+                                              std::vector<SceneResult>& results) const {
+  checkSceneRange(first, count);
+  results.resize(count);
+  if (probe == 0 || probe >= count) {
+    sampleInto(request, seed, first, count, threads, results.data());
+    return false;
+  }
+  // The probe scenes are the first ones of the range, so the answer does not depend on timing.
+  sampleInto(request, seed, first, probe, threads, results.data());
+  const bool hopeless = std::none_of(results.begin(), results.begin() + probe,
+                                     [](const SceneResult& r) { return r.success; });
+  if (hopeless) {
+    results.resize(probe);
+    return true;
+  }
+  sampleInto(request, seed, first + probe, count - probe, threads, results.data() + probe);
+  return false;
+}
+
+void SceneGenerator::sampleInto(const PreparedRequest& request, std::uint64_t seed,
+                                std::uint64_t first, std::uint64_t count, unsigned threads,
+                                SceneResult* results) const {
   if (threads == 0) {
     threads = std::max(1u, std::thread::hardware_concurrency());
   }
@@ -289,8 +323,7 @@ void SceneGenerator::sampleSceneRange(const PreparedRequest& request, std::uint6
     for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
          begin = next.fetch_add(kChunk)) {
       const std::uint64_t end = std::min(count, begin + kChunk);
-      worker.runChunk(seed, first + begin, static_cast<std::size_t>(end - begin),
-                      results.data() + begin);
+      worker.runChunk(seed, first + begin, static_cast<std::size_t>(end - begin), results + begin);
     }
   };
   // An exception in any worker (out of memory) stops the others and reaches the caller.

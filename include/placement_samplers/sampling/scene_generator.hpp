@@ -125,8 +125,19 @@ class SceneGenerator {
                         std::uint64_t count, unsigned threads,
                         std::vector<SceneResult>& results) const;
 
+  /// As sampleSceneRange(), but when the first @p probe scenes of the range all failed the
+  /// rest are not sampled: @p results then holds only those, and the request is hopeless in
+  /// all likelihood (the node answers it at once instead of spending its time limit).
+  /// @param probe scenes to try first; 0 = never give up
+  /// @return true when it gave up
+  bool sampleSceneRangeOrGiveUp(const PreparedRequest& request, std::uint64_t seed,
+                                std::uint64_t first, std::uint64_t count, unsigned threads,
+                                std::uint64_t probe, std::vector<SceneResult>& results) const;
+
  private:
   class Worker;
+  void sampleInto(const PreparedRequest& request, std::uint64_t seed, std::uint64_t first,
+                  std::uint64_t count, unsigned threads, SceneResult* results) const;
   std::shared_ptr<const SceneConfig> config_;
 };
 
