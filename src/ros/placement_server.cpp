@@ -3,6 +3,10 @@
 #include <ros/package.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <sstream>
 
@@ -57,6 +61,32 @@ std::string joined(const std::vector<std::string>& parts) {
     out += (out.empty() ? "" : "; ") + p;
   }
   return out;
+}
+
+/// Lowers the calling thread's priority once (threads it starts inherit it): sampling threads
+/// yield a core at once to the light services' thread and to roscpp's own network threads,
+/// which stay at the process's priority.
+void lowerSamplingThreadPriority() {
+  thread_local bool lowered = false;
+  if (!lowered) {
+    lowered = true;
+    const auto tid = static_cast<id_t>(::syscall(SYS_gettid));
+    const int now = ::getpriority(PRIO_PROCESS, tid);
+    ::setpriority(PRIO_PROCESS, tid, std::min(now + kSamplingNiceness, 19));
+  }
+}
+
+/// The master's identity: roscore sets /run_id anew each time it starts.
+std::string masterRunId() {
+  std::string id;
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = "/run_id";
+  if (ros::master::execute("getParam", args, result, payload, false) &&
+      payload.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    id = static_cast<std::string>(payload);
+  }
+  return id;
 }
 
 }  // namespace
@@ -153,8 +183,10 @@ void PlacementServer::advertise() {
 }
 
 void PlacementServer::watchLoop(ros::WallDuration period) {
-  // A thread of its own: the check must run while every service thread is busy.
+  // A thread of its own: the check must run while every service thread is busy. A master that
+  // restarted between two checks is up both times: its /run_id tells it is a new one.
   bool up = true;
+  std::string runId = masterRunId();
   const auto step = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(period.toSec()));
   std::unique_lock<std::mutex> lock(pendingMutex_);
@@ -166,7 +198,17 @@ void PlacementServer::watchLoop(ros::WallDuration period) {
     }
     lock.unlock();
     const bool now = ros::master::check();
-    if (now && !up) {
+    const std::string id = now ? masterRunId() : std::string();
+    const bool restarted = now && up && !id.empty() && !runId.empty() && id != runId;
+    if (now && !id.empty()) {
+      runId = id;
+    }
+    if (restarted) {
+      ROS_WARN(
+          "placement_server: the master restarted (new run_id); registering services and "
+          "topics again");
+      advertise();
+    } else if (now && !up) {
       ROS_WARN("placement_server: the master is back; registering services and topics again");
       advertise();
     } else if (!now && up) {
@@ -193,6 +235,7 @@ std::uint64_t PlacementServer::nextSeed() {
 
 bool PlacementServer::sample(SamplePlacements::Request& request,
                              SamplePlacements::Response& response) {
+  lowerSamplingThreadPriority();
   // Every error becomes an answer: roscpp would turn an exception into a bare failure.
   try {
     const std::shared_ptr<const SceneGenerator> generator = this->generator();
@@ -210,8 +253,9 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     // the answer is the same either way.
     const bool simulated = prepared.physics.mode != PhysicsMode::None;
     const unsigned threads = count >= 256 || (simulated && count >= 8) ? 0 : 1;
-    std::vector<SceneResult> scenes =
-        generator->sampleSceneRange(prepared, seed, request.first_scene, count, threads);
+    std::vector<SceneResult> scenes;
+    const bool gaveUp = generator->sampleSceneRangeOrGiveUp(
+        prepared, seed, request.first_scene, count, threads, kGiveUpProbeScenes, scenes);
     if (placements >= kTrimAfterPlacements) {
       // roscpp frees the answer after this callback: the publishing thread trims a little later.
       std::lock_guard<std::mutex> lock(pendingMutex_);
@@ -226,17 +270,35 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
       failures.add(scene);
     }
     response.success = failures.failed() == 0;
-    if (!response.success) {
+    if (gaveUp) {
+      response.message = "gave up: the first " + std::to_string(scenes.size()) + " of " +
+                         std::to_string(count) + " scenes all failed, the rest were not sampled; " +
+                         failures.message(scenes.size());
+    } else if (!response.success) {
       response.message = failures.message(count);
     } else {
       response.message = joined(prepared.notes);
       if (!request.dry_run) {
-        {
-          std::lock_guard<std::mutex> lock(pendingMutex_);
-          pending_ = ShownScene{generator, std::move(prepared), std::move(scenes.front()), seed,
-                                request.sampler};
+        if (beforeShowHook_) {
+          beforeShowHook_();
         }
-        pendingReady_.notify_all();
+        bool current = false;
+        {
+          // Under pendingMutex_: a reload swaps the generator before it clears what is pending,
+          // so a scene of the old configuration is either cleared or never queued.
+          std::lock_guard<std::mutex> lock(pendingMutex_);
+          current = this->generator() == generator;
+          if (current) {
+            pending_ = ShownScene{generator, std::move(prepared), std::move(scenes.front()), seed,
+                                  request.sampler};
+          }
+        }
+        if (current) {
+          pendingReady_.notify_all();
+        } else {
+          response.message = joined(
+              {response.message, "not shown: the configuration was reloaded during the call"});
+        }
       }
     }
   } catch (const std::exception& e) {

@@ -89,6 +89,15 @@ start_master
 wait_service /placement_server/sample_placements || fail "not registered again while busy"
 echo "registered again while both sampling threads were busy"
 
+# A master that restarts between two checks is up at both of them: the node tells the new one by
+# its /run_id, which roscore sets anew at each start. Changing it stands in for such a restart.
+rosparam set /run_id "$(cat /proc/sys/kernel/random/uuid)"
+for _ in $(seq 50); do grep -q "the master restarted (new run_id)" "$log/node.log" && break; sleep 0.2; done
+grep -q "the master restarted (new run_id)" "$log/node.log" || fail "a new run_id was not noticed"
+wait_service /placement_server/sample_placements || fail "not registered after a new run_id"
+call_ok "{seed: 7}" || fail "call after a new run_id"
+echo "a new master identity was noticed while the master stayed up"
+
 # SIGTERM in the middle of a batch: a clean shutdown, exit 0, nothing left at the master.
 hopeless & pids+=($!)
 sleep 1
@@ -99,4 +108,4 @@ wait "$node" || status=$?
 if rosservice list 2>/dev/null | grep -q /placement_server/; then
   fail "SIGTERM: services still registered: $(rosservice list | grep /placement_server/ | tr '\n' ' ')"
 fi
-echo "master restart: 3 passed, 0 failed"
+echo "master restart: 4 passed, 0 failed"

@@ -7,6 +7,8 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -34,6 +36,13 @@ namespace ros_interface {
 /// threads() threads); ~reload and ~ping have a queue and thread of their own, so they answer
 /// while every sampling thread is busy; one more thread sends frames, markers and the scene and
 /// re-sends the frames on /tf at tf_rate; one more watches the master.
+/// Niceness added to the threads that sample (and those they start), so that ~ping, ~reload,
+/// the publishing thread and roscpp's network threads get a core at once during a heavy call.
+constexpr int kSamplingNiceness = 10;
+
+/// A batch whose first this many scenes all failed stops there and answers at once.
+constexpr std::uint64_t kGiveUpProbeScenes = 32;
+
 class PlacementServer {
  public:
   /// @param privateHandle the node's private namespace, where the configuration lives
@@ -53,6 +62,9 @@ class PlacementServer {
   /// ~validate_placements: the verdict on given poses (validation_service.hpp).
   bool validate(ValidatePlacements::Request& request, ValidatePlacements::Response& response);
   bool reload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  /// For tests: runs in sample() after sampling and before the scene is queued for showing.
+  void setBeforeShowHook(std::function<void()> hook) { beforeShowHook_ = std::move(hook); }
+
   /// Does nothing: a baseline for measuring the cost of a service call.
   bool ping(std_srvs::Empty::Request&, std_srvs::Empty::Response&) { return true; }
 
@@ -118,6 +130,7 @@ class PlacementServer {
   bool stopping_ = false;
   std::thread publisher_;
   std::thread watcher_;
+  std::function<void()> beforeShowHook_;
 };
 
 }  // namespace ros_interface
