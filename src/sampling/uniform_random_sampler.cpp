@@ -9,6 +9,7 @@
 #include "placement_samplers/limits.hpp"
 #include "sampling/sin_cos.hpp"
 #include "placement_samplers/text.hpp"
+#include "sampling/free_position_check.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -239,6 +240,16 @@ bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
+    }
+    if (attempt == detail::kNoRoomProbeAttempts && check && context.includesRadiusTest() &&
+        detail::noFreePosition(context.entries(), object, candidate.position.z(),
+                               base.head<2>() + Eigen::Vector2d(entry.x[0], entry.y[0]),
+                               base.head<2>() + Eigen::Vector2d(entry.x[1], entry.y[1]))) {
+      return fail(context, &object, attempt - 1,
+                  "could not place object " + quoteText(object.name) + " with sampler " +
+                      quoteText(name()) + ": after " + std::to_string(attempt - 1) +
+                      " attempts, no position is left (every position of its range overlaps a "
+                      "fixture or an object placed before it)");
     }
     // x before y, as robosuite draws them; stored as one pair, since the checker loads the
     // pair at once and a load that spans two separate stores waits for both to retire.

@@ -244,11 +244,13 @@ TEST_F(PlacementServerTest, FailureNamesObjectSamplerAndBlocker) {
             "overlapped fixture 'wall'");
 }
 
-// max_request_seconds (2 s in the test configuration) bounds an absurd max_attempts.
+// max_request_seconds (2 s in the test configuration) bounds an absurd max_attempts. With the
+// radius test the node proves there is no room (next test); the exact test alone it cannot.
 TEST_F(PlacementServerTest, TimeLimitStopsAHopelessRequest) {
   SamplePlacements::Request r = seeded(12);
   r.sampler = "TableSampler";
   r.max_attempts = 4000000000u;
+  r.collision_check = SamplePlacements::Request::CHECK_FCL;
   r.fixtures.push_back(tableCoveringWall());
   const ros::WallTime start = ros::WallTime::now();
   const SamplePlacements srv = call(r);
@@ -264,6 +266,24 @@ TEST_F(PlacementServerTest, TimeLimitStopsAHopelessRequest) {
   EXPECT_LT(seconds, 6.0);
   // What was achieved comes back: the scene, with the objects placed before the stop (none).
   ASSERT_EQ(srv.response.scenes.size(), 1u);
+}
+
+// A wall over the table with an absurd max_attempts: after the probe's attempts the radius test
+// proves that no position is left, and the call ends long before its time limit.
+TEST_F(PlacementServerTest, NoRoomIsToldBeforeTheTimeLimit) {
+  SamplePlacements::Request r = seeded(13);
+  r.sampler = "TableSampler";
+  r.max_attempts = 4000000000u;
+  r.fixtures.push_back(tableCoveringWall());
+  const ros::WallTime start = ros::WallTime::now();
+  const SamplePlacements srv = call(r);
+  const double seconds = (ros::WallTime::now() - start).toSec();
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_EQ(srv.response.message,
+            "could not place object 'cube' with sampler 'TableSampler': after 131071 attempts, no "
+            "position is left (every position of its range overlaps a fixture or an object "
+            "placed before it)");
+  EXPECT_LT(seconds, 1.5);  // the limit is 2 s: a generous bound that still tells them apart
 }
 
 // Exact checks per request: objects resting on the table (z_offset 0.01) pass, and no two

@@ -248,7 +248,8 @@ TEST_F(SceneLifecycleTest, ReloadSaysWhenThreadsTakeEffect) {
 }
 
 // Four hopeless requests hold all four sampling threads for max_request_seconds (2 s); ~ping
-// and ~reload have a thread of their own and answer meanwhile.
+// and ~reload have a thread of their own and answer meanwhile. The requests use the exact test
+// alone: with the radius test the node would prove at once that no position is left.
 TEST_F(SceneLifecycleTest, LightServicesAnswerWhileSamplingThreadsAreBusy) {
   std::vector<std::future<SamplePlacements>> busy;
   const ros::WallTime start = ros::WallTime::now();
@@ -256,6 +257,7 @@ TEST_F(SceneLifecycleTest, LightServicesAnswerWhileSamplingThreadsAreBusy) {
     busy.push_back(std::async(std::launch::async, [i] {
       SamplePlacements::Request r = seeded(90 + i);
       r.max_attempts = 4000000000u;
+      r.collision_check = SamplePlacements::Request::CHECK_FCL;
       r.dry_run = true;
       r.fixtures.push_back(placement_samplers::test::tableCoveringWall());
       return call(r);

@@ -1,5 +1,6 @@
-// Requests that can never be placed are recognised before sampling (the disks of a sampler's
-// objects cannot fit its region), and batches whose first scenes all fail can stop early.
+// Requests that can never be placed are recognised early: before sampling (the disks of a
+// sampler's objects cannot fit its region), while sampling (after many attempts, no position is
+// left), and batches whose first scenes all fail can stop there.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -8,6 +9,7 @@
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/sampling/packing_bound.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
+#include "sampling/free_position_check.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {
@@ -125,6 +127,64 @@ TEST(GiveUp, KeepsGoingWhenAnyProbeSceneIsPlaced) {
   const SceneGenerator tight(buildFromYaml(discs(7, ", max_attempts: 50")));
   EXPECT_FALSE(tight.sampleSceneRangeOrGiveUp(tight.prepare({}), 5, 0, 8, 1, 8, out));
   EXPECT_EQ(out.size(), 8u);
+}
+
+TEST(NoRoom, DisksThatCoverTheBoxTogether) {
+  const ObjectPtr cube = test::makeBox("cube", Eigen::Vector3d(0.04, 0.04, 0.04));
+  const ObjectPtr post = test::makeCylinder("post", 0.3, 0.5);
+  const Eigen::Vector2d lo(-0.25, -0.25);
+  const Eigen::Vector2d hi(0.25, 0.25);
+  auto at = [&](double x, double y, double z) {
+    return PlacedEntry("post", post.get(), Eigen::Vector3d(x, y, z), Eigen::Quaterniond::Identity(),
+                       true);
+  };
+  // Two posts of reach 0.3 + 0.028 at x = -0.2 and 0.2 cover the box together, neither alone.
+  EXPECT_TRUE(detail::noFreePosition({at(-0.2, 0, 0.8), at(0.2, 0, 0.8)}, *cube, 0.8, lo, hi));
+  EXPECT_FALSE(detail::noFreePosition({at(-0.2, 0, 0.8)}, *cube, 0.8, lo, hi));
+  // Moved apart, a strip between them is free.
+  EXPECT_FALSE(detail::noFreePosition({at(-0.4, 0, 0.8), at(0.4, 0, 0.8)}, *cube, 0.8, lo, hi));
+  // A post whose top is below the cube's bottom does not block it (the one-sided z test).
+  EXPECT_FALSE(detail::noFreePosition({at(-0.2, 0, 0.8), at(0.2, 0, 0.2)}, *cube, 0.8, lo, hi));
+  EXPECT_FALSE(detail::noFreePosition({}, *cube, 0.8, lo, hi));
+}
+
+/// A table sampler with a wall over it and an absurd attempt limit ends after the probe's
+/// attempts, well before its time limit, and says why.
+TEST(NoRoom, AWallOverTheRegionEndsTheAttemptsEarly) {
+  const std::string yaml = R"(
+objects:
+  cube: {shape: box, size: [0.04, 0.04, 0.04]}
+  can: {shape: cylinder, radius: 0.03, length: 0.1}
+samplers:
+  - {name: Table, objects: [can, cube], x_range: [-0.3, 0.3], y_range: [-0.3, 0.3],
+     reference_pos: [0, 0, 0.8]}
+)";
+  const SceneGenerator generator(buildFromYaml(yaml));
+  auto run = [&](const std::vector<RequestFixture>& fixtures) {
+    SampleRequest request;
+    request.maxAttempts = 4000000000u;
+    request.maxSeconds = 60.0;
+    request.fixtures = fixtures;
+    return generator.sampleScene(generator.prepare(request), 1, 0);
+  };
+  auto box = [](const std::string& name, double x, double y, double side) {
+    RequestFixture f;
+    f.name = name;
+    f.shape = Shape::box(Eigen::Vector3d(side, side, 0.4));
+    f.position = Eigen::Vector3d(x, y, 0.9);
+    return f;
+  };
+  const SceneResult walled = run({box("wall", 0, 0, 1.0)});
+  ASSERT_FALSE(walled.success);
+  EXPECT_EQ(walled.message,
+            "could not place object 'can' with sampler 'Table': after 131071 attempts, no "
+            "position is left (every position of its range overlaps a fixture or an object "
+            "placed before it)");
+  // Four tiles that cover it only together.
+  const SceneResult tiled = run({box("a", -0.2, -0.2, 0.45), box("b", 0.2, -0.2, 0.45),
+                                 box("c", -0.2, 0.2, 0.45), box("d", 0.2, 0.2, 0.45)});
+  ASSERT_FALSE(tiled.success);
+  EXPECT_NE(tiled.message.find("no position is left"), std::string::npos) << tiled.message;
 }
 
 }  // namespace
