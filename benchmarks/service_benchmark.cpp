@@ -2,12 +2,18 @@
 // Lift-sized request with config/lift.yaml) and its empty ping service alternately, over
 // persistent connections, and prints the latency percentiles of both and their ratio. Run with
 // and without dry_run, so that the cost of broadcasting tf frames and markers shows apart.
+// --load adds two tables: ~ping while a heavy batch uses every core, and light calls beside
+// clients whose requests can never be placed.
 
 #include <ros/ros.h>
+#include <shape_msgs/SolidPrimitive.h>
 #include <std_srvs/Empty.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <mutex>
+#include <thread>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -55,24 +61,135 @@ Run measure(ros::ServiceClient& sampleClient, ros::ServiceClient& pingClient, in
   return run;
 }
 
+/// The request of a client whose objects can never be placed: a wall over the whole table and an
+/// absurd attempt limit (robosuite's radius test; in the exact-only mode nothing proves it).
+placement_samplers::SamplePlacements::Request hopelessRequest(std::uint8_t collisionCheck) {
+  placement_samplers::SamplePlacements::Request r;
+  r.seed = 3;
+  r.max_attempts = 4000000000u;
+  r.dry_run = true;
+  r.collision_check = collisionCheck;
+  placement_samplers::Fixture wall;
+  wall.name = "wall";
+  wall.shape.type = shape_msgs::SolidPrimitive::BOX;
+  wall.shape.dimensions = {3.0, 3.0, 1.0};
+  wall.pose.position.z = 0.8;
+  wall.pose.orientation.w = 1.0;
+  r.fixtures.push_back(wall);
+  return r;
+}
+
+void printLatencies(const char* label, const std::vector<double>& v) {
+  std::printf("%-40s %8zu %10.1f %10.1f %10.1f\n", label, v.size(), quantile(v, 0.5),
+              quantile(v, 0.99), v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()));
+}
+
+/// ~ping (sequential calls, persistent) while another client keeps one heavy batch running.
+void pingUnderHeavyCall(ros::NodeHandle& nh, const std::string& server, double seconds) {
+  std::atomic<bool> stop{false};
+  std::atomic<int> batches{0};
+  std::thread heavy([&] {
+    ros::ServiceClient client =
+        nh.serviceClient<placement_samplers::SamplePlacements>(server + "/sample_placements", true);
+    while (!stop) {
+      placement_samplers::SamplePlacements srv;
+      srv.request.seed = 7;
+      srv.request.num_scenes = 10000;
+      srv.request.dry_run = true;
+      client.call(srv);
+      ++batches;
+    }
+  });
+  ros::ServiceClient ping = nh.serviceClient<std_srvs::Empty>(server + "/ping", true);
+  std::vector<double> latencies;
+  ros::WallDuration(0.5).sleep();  // the batch is running
+  const Clock::time_point end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                   std::chrono::duration<double>(seconds));
+  while (Clock::now() < end) {
+    std_srvs::Empty empty;
+    const Clock::time_point start = Clock::now();
+    ping.call(empty);
+    latencies.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  stop = true;
+  heavy.join();
+  std::printf("\n~ping during batches of 10000 scenes on every core (%d batches, %.0f s)\n",
+              batches.load(), seconds);
+  std::printf("%-40s %8s %10s %10s %10s\n", "", "calls", "p50 [us]", "p99 [us]", "max [us]");
+  printLatencies("ping", latencies);
+}
+
+/// Light one-scene calls of @p light clients beside @p hopeless clients that send requests that
+/// can never be placed, all in a loop on their own persistent connections.
+void lightBesideHopeless(ros::NodeHandle& nh, const std::string& server, int light, int hopeless,
+                         std::uint8_t mode, double seconds) {
+  std::atomic<bool> stop{false};
+  std::mutex mutex;
+  std::vector<double> lightLatencies;
+  std::vector<double> hopelessLatencies;
+  std::vector<std::thread> clients;
+  for (int c = 0; c < light + hopeless; ++c) {
+    clients.emplace_back([&, c] {
+      ros::ServiceClient client = nh.serviceClient<placement_samplers::SamplePlacements>(
+          server + "/sample_placements", true);
+      const bool isLight = c < light;
+      std::vector<double> mine;
+      for (std::uint64_t i = 1; !stop; ++i) {
+        placement_samplers::SamplePlacements srv;
+        if (isLight) {
+          srv.request.seed = i;
+          srv.request.dry_run = true;
+        } else {
+          srv.request = hopelessRequest(mode);
+        }
+        const Clock::time_point start = Clock::now();
+        client.call(srv);
+        mine.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      auto& all = isLight ? lightLatencies : hopelessLatencies;
+      all.insert(all.end(), mine.begin(), mine.end());
+    });
+  }
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  stop = true;
+  for (std::thread& t : clients) {
+    t.join();
+  }
+  std::printf("\n%d light clients (1 scene) beside %d hopeless ones (%s), %.0f s\n", light,
+              hopeless,
+              mode == placement_samplers::SamplePlacements::Request::CHECK_FCL
+                  ? "exact test alone: runs to the time limit"
+                  : "radius test: no room proven",
+              seconds);
+  std::printf("%-40s %8s %10s %10s %10s\n", "", "calls", "p50 [us]", "p99 [us]", "max [us]");
+  printLatencies("light calls", lightLatencies);
+  printLatencies("hopeless calls", hopelessLatencies);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "service_benchmark", ros::init_options::AnonymousName);
   std::string server = "/placement_server";
   int calls = 2000;
+  bool load = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--server" && i + 1 < argc) {
       server = argv[++i];
+    } else if (arg == "--load") {
+      load = true;
     } else if (arg == "--calls" && i + 1 < argc) {
       calls = std::max(1, std::atoi(argv[++i]));
     } else {
       std::fprintf(
           stderr,
-          "usage: service_benchmark [--server NS] [--calls N]\n"
+          "usage: service_benchmark [--server NS] [--calls N] [--load]\n"
           "Calls NS/sample_placements and NS/ping alternately, N times each (default "
-          "/placement_server, 2000),\nwith dry_run false then true, and prints p50/p99.\n");
+          "/placement_server, 2000),\nwith dry_run false then true, and prints p50/p99.\n"
+          "--load: then ~ping during heavy batches, and light calls beside hopeless ones.\n");
       return 2;
     }
   }
@@ -104,6 +221,13 @@ int main(int argc, char** argv) {
     std::printf("%-26s %10.1f %10.1f %10.1f %10.1f %12.2f\n",
                 dryRun ? "sample_placements dry_run" : "sample_placements", p50,
                 quantile(run.sample, 0.99), ping50, quantile(run.ping, 0.99), p50 / ping50);
+  }
+  if (load) {
+    pingUnderHeavyCall(nh, server, 10.0);
+    lightBesideHopeless(nh, server, 8, 8,
+                        placement_samplers::SamplePlacements::Request::CHECK_RADIUS, 10.0);
+    lightBesideHopeless(nh, server, 8, 8, placement_samplers::SamplePlacements::Request::CHECK_FCL,
+                        10.0);
   }
   if (failures > 0) {
     std::fprintf(stderr, "service_benchmark: %d calls failed\n", failures);

@@ -43,7 +43,7 @@ struct SceneConfig {
   std::shared_ptr<SequentialCompositeSampler> root;  ///< the root composite, named "root"
 
   // Settings of the node's service (the CLI has flags of its own).
-  unsigned threads = 2;                       ///< service calls served at once
+  unsigned threads = 16;                      ///< service calls served at once
   std::uint32_t maxScenesPerRequest = 10000;  ///< larger num_scenes are refused
   double maxRequestSeconds = 10.0;            ///< a request stops after this long [s]
   /// Requests with more fixtures are refused (SceneGenerator::prepare).
