@@ -175,10 +175,13 @@ int main(int argc, char** argv) {
   std::string server = "/placement_server";
   int calls = 2000;
   bool load = false;
+  std::string floor;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--server" && i + 1 < argc) {
       server = argv[++i];
+    } else if (arg == "--floor" && i + 1 < argc) {
+      floor = argv[++i];
     } else if (arg == "--load") {
       load = true;
     } else if (arg == "--calls" && i + 1 < argc) {
@@ -186,9 +189,11 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(
           stderr,
-          "usage: service_benchmark [--server NS] [--calls N] [--load]\n"
+          "usage: service_benchmark [--server NS] [--calls N] [--floor SERVICE] [--load]\n"
           "Calls NS/sample_placements and NS/ping alternately, N times each (default "
           "/placement_server, 2000),\nwith dry_run false then true, and prints p50/p99.\n"
+          "--floor: also a bare roscpp std_srvs/Empty service (test/ros/minimal_service's "
+          "~ping),\nthe floor of any service's latency, alternating with NS/ping.\n"
           "--load: then ~ping during heavy batches, and light calls beside hopeless ones.\n");
       return 2;
     }
@@ -221,6 +226,30 @@ int main(int argc, char** argv) {
     std::printf("%-26s %10.1f %10.1f %10.1f %10.1f %12.2f\n",
                 dryRun ? "sample_placements dry_run" : "sample_placements", p50,
                 quantile(run.sample, 0.99), ping50, quantile(run.ping, 0.99), p50 / ping50);
+  }
+  if (!floor.empty()) {
+    if (!ros::service::waitForService(floor, ros::Duration(30.0))) {
+      std::fprintf(stderr, "service_benchmark: %s is not available\n", floor.c_str());
+      return 1;
+    }
+    ros::ServiceClient floorClient = nh.serviceClient<std_srvs::Empty>(floor, true);
+    std::vector<double> bare;
+    std::vector<double> ping;
+    for (int i = 0; i < calls + 200; ++i) {
+      for (auto* client : {&floorClient, &pingClient}) {
+        std_srvs::Empty empty;
+        const Clock::time_point start = Clock::now();
+        failures += client->call(empty) ? 0 : 1;
+        if (i >= 200) {  // the first 200 warm up
+          (client == &floorClient ? bare : ping)
+              .push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+        }
+      }
+    }
+    const double bare50 = quantile(bare, 0.5);
+    std::printf("%-26s %10.1f %10.1f %10.1f %10.1f %12.2f\n", "bare roscpp (floor)", bare50,
+                quantile(bare, 0.99), quantile(ping, 0.5), quantile(ping, 0.99),
+                bare50 / quantile(ping, 0.5));
   }
   if (load) {
     pingUnderHeavyCall(nh, server, 10.0);
