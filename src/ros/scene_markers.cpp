@@ -261,10 +261,12 @@ std::string physicsLabel(std::string_view name, const PhysicsOutcome& o,
   return text.str();
 }
 
-/// x-y extent of what is drawn, so that the ground plane lies under all of it.
-void growExtent(const Eigen::Vector3d& p, double radius, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
-  lo = lo.cwiseMin(p.head<2>() - Eigen::Vector2d::Constant(radius));
-  hi = hi.cwiseMax(p.head<2>() + Eigen::Vector2d::Constant(radius));
+/// x-y extent of what is drawn, so that the ground plane lies under all of it: @p p with
+/// @p half on either side.
+void growExtent(const Eigen::Vector3d& p, const Eigen::Vector2d& half, Eigen::Vector2d& lo,
+                Eigen::Vector2d& hi) {
+  lo = lo.cwiseMin(p.head<2>() - half);
+  hi = hi.cwiseMax(p.head<2>() + half);
 }
 
 }  // namespace
@@ -276,7 +278,7 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
   MarkerBuilder builder(frameId, stamp);
   const PhysicsSettings& physics = request.physics;
   const bool settled = scene.simulated && scene.physicsMode == PhysicsMode::Settle;
-  const std_msgs::ColorRGBA alarm = colour(1.0f, 0.3f, 0.15f, 1.0f);
+  const std_msgs::ColorRGBA alarm = colour(1.0f, 0.35f, 0.1f, 1.0f);
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
   // Labels float a little above the top of the geometry (its top offset after the pose).
@@ -295,7 +297,8 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
     builder.object("objects", *p.object, p.position, p.orientation, c);
     const PhysicsOutcome* o =
         scene.simulated && i < scene.physics.size() ? &scene.physics[i] : nullptr;
-    growExtent(o ? o->sampledPosition : p.position, p.object->horizontalRadius, lo, hi);
+    growExtent(o ? o->sampledPosition : p.position,
+               Eigen::Vector2d::Constant(p.object->horizontalRadius), lo, hi);
     if (o == nullptr || !unsettled(*o, physics)) {
       builder.label(p.name, p.position, p.object->topOffset.z() + gap);
       continue;
@@ -317,15 +320,16 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
         top = p.object->topOffset.z();
       }
     }
-    builder.label(physicsLabel(p.name, *o, physics), labelAt, top + gap, alarm);
+    // A little higher than a name: clear of the wire box.
+    builder.label(physicsLabel(p.name, *o, physics), labelAt, top + 1.5 * gap, alarm);
   }
   for (const SamplerRegion& region : samplerRegions(request, scene)) {
     builder.region(region);
     if (region.triangles.empty()) {
-      growExtent(region.centre, 0.5 * region.size.maxCoeff(), lo, hi);
+      growExtent(region.centre, 0.5 * region.size, lo, hi);
     }
     for (const Eigen::Vector3d& v : region.triangles) {
-      growExtent(v, 0.0, lo, hi);
+      growExtent(v, Eigen::Vector2d::Zero(), lo, hi);
     }
   }
   if (physics.groundZ && lo.x() <= hi.x()) {

@@ -152,7 +152,7 @@ TEST(SceneMarkers, SettledSceneShowsWhatFellAndWhereItWasSampled) {
   moved << std::fixed << std::setprecision(3) << scene.physics[1].moved;
   EXPECT_EQ(ballLabel->text, "ball: fell, moved " + moved.str() + " m");
   EXPECT_EQ(ballLabel->pose.position.x, sampled.x());
-  EXPECT_NEAR(ballLabel->pose.position.z, sampled.z() + 0.03 + 0.02, 1e-12);
+  EXPECT_NEAR(ballLabel->pose.position.z, sampled.z() + 0.03 + 0.03, 1e-12);
   EXPECT_GT(ballLabel->color.r, 0.9f);
   ASSERT_NE(label(array, "cube"), nullptr);
   EXPECT_EQ(label(array, "cube")->text, "cube");
@@ -206,7 +206,7 @@ ground_z: 0.8
 objects:
   cube: {shape: box, size: [0.04, 0.04, 0.04]}
 samplers:
-  - {name: A, objects: [cube], x_range: [-0.1, 0.3], y_range: [-0.2, 0.2],
+  - {name: A, objects: [cube], x_range: [-0.1, 0.3], y_range: [-0.1, 0.1],
      reference_pos: [0, 0, 0.8]}
 )";
   const SceneGenerator generator(buildSceneConfig(parseYaml(yaml, "ground.yaml")));
@@ -221,11 +221,11 @@ samplers:
   const double top = ground.pose.position.z + ground.scale.z / 2;
   EXPECT_LT(top, 0.8);
   EXPECT_GT(top, 0.8 - 0.005);
-  // The region [-0.1, 0.3] x [-0.2, 0.2] and 0.25 m around it.
+  // The region [-0.1, 0.3] x [-0.1, 0.1] (the cube inside it) and 0.25 m around it.
   EXPECT_NEAR(ground.pose.position.x, 0.1, 1e-12);
   EXPECT_NEAR(ground.pose.position.y, 0.0, 1e-12);
   EXPECT_NEAR(ground.scale.x, 0.4 + 0.5, 1e-12);
-  EXPECT_NEAR(ground.scale.y, 0.4 + 0.5, 1e-12);
+  EXPECT_NEAR(ground.scale.y, 0.2 + 0.5, 1e-12);
 }
 
 TEST(SceneMarkers, PoseArrayHoldsThePlacedObjectsInSamplingOrder) {
