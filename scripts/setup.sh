@@ -19,6 +19,8 @@ PS_PACKAGES=(
   liburdfdom-dev libconsole-bridge-dev libfcl-dev libeigen3-dev libassimp-dev
   librostest-dev python3-rostest python3-rospy python3-nose python3-numpy libgtest-dev
   libyaml-cpp-dev catkin-lint
+  # The node's ~get_loggers reads log4cxx (rosconsole's backend) itself: its headers.
+  liblog4cxx-dev
   # ctest clang_format checks the layout of every C++ file with Debian 12's clang-format (14).
   clang-format
   # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it;

@@ -157,6 +157,7 @@ void PlacementServer::advertise() {
   pingService_.shutdown();
   markerPublisher_.shutdown();
   scenePublisher_.shutdown();
+  posesPublisher_.shutdown();
   tfPublisher_.shutdown();
   tfStaticPublisher_.shutdown();
   ros::NodeHandle global;
@@ -164,18 +165,23 @@ void PlacementServer::advertise() {
   tfStaticPublisher_ = global.advertise<tf2_msgs::TFMessage>("/tf_static", 100, true);
   markerPublisher_ = privateHandle_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   scenePublisher_ = privateHandle_.advertise<PlacedScene>("scene", 1, true);
+  posesPublisher_ = privateHandle_.advertise<geometry_msgs::PoseArray>("poses", 1, true);
   sampleService_ =
       privateHandle_.advertiseService("sample_placements", &PlacementServer::sample, this);
   validateService_ =
       privateHandle_.advertiseService("validate_placements", &PlacementServer::validate, this);
   reloadService_ = lightHandle_.advertiseService("reload", &PlacementServer::reload, this);
   pingService_ = lightHandle_.advertiseService("ping", &PlacementServer::ping, this);
+  loggerServices_.advertise(lightHandle_);
   // Latched topics carry the current scene to whoever subscribes after a master restart.
   if (!shown_.markers.markers.empty()) {
     markerPublisher_.publish(shown_.markers);
   }
   if (shown_.scene) {
     scenePublisher_.publish(*shown_.scene);
+  }
+  if (!shown_.poses.header.frame_id.empty()) {
+    posesPublisher_.publish(shown_.poses);
   }
   if (tfStatic_ && !shown_.frames.empty()) {
     tfStaticPublisher_.publish(tfMessage(shown_.frames));
@@ -322,6 +328,7 @@ PlacementServer::Shown PlacementServer::render(const ShownScene& shown) const {
   Shown out;
   out.frames = toTransforms(shown.scene, shown.request.fixtures, config.frameId, prefix, now);
   out.markers = makeSceneMarkers(shown.request, shown.scene, config.frameId, now);
+  out.poses = makeScenePoses(shown.scene, config.frameId, now);
   PlacedScene scene;
   scene.header.frame_id = config.frameId;
   scene.header.stamp = now;
@@ -390,10 +397,14 @@ void PlacementServer::publishLoop() {
         sendFrames(false);
         markerPublisher_.publish(shown_.markers);
         scenePublisher_.publish(*shown_.scene);
+        posesPublisher_.publish(shown_.poses);
       } else if (clear) {
         shown_.frames.clear();
         shown_.markers = makeClearMarkers();
         markerPublisher_.publish(shown_.markers);
+        shown_.poses =
+            makeScenePoses(SceneResult(), generator()->config().frameId, ros::Time::now());
+        posesPublisher_.publish(shown_.poses);
         if (tfStatic_) {
           tfStaticPublisher_.publish(tf2_msgs::TFMessage());
         }

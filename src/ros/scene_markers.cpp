@@ -1,9 +1,14 @@
 #include "placement_samplers/ros/scene_markers.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <iomanip>
+#include <limits>
+#include <sstream>
 
+#include "placement_samplers/geometry/shape.hpp"
 #include "placement_samplers/ros/conversions.hpp"
 #include "placement_samplers/sampling/sampler_regions.hpp"
 
@@ -137,13 +142,62 @@ class MarkerBuilder {
     }
   }
 
-  /// The name above the object's top, in namespace "labels" (rviz can switch it off).
-  void label(std::string_view name, const Eigen::Vector3d& position, double top) {
+  /// @p text above the object's top, in namespace "labels" (rviz can switch it off).
+  void label(std::string_view text, const Eigen::Vector3d& position, double top,
+             const std_msgs::ColorRGBA& c = colour(1.0f, 1.0f, 1.0f, 0.9f)) {
     Marker& m = add("labels", Marker::TEXT_VIEW_FACING,
                     Eigen::Isometry3d(Eigen::Translation3d(position + Eigen::Vector3d(0, 0, top))),
-                    Eigen::Vector3d(0.0, 0.0, kLabelHeight), colour(1.0f, 1.0f, 1.0f, 0.9f));
+                    Eigen::Vector3d(0.0, 0.0, kLabelHeight), c);
     m.id = kLabelIdBase + labels_++;
-    m.text = name;
+    m.text = text;
+  }
+
+  /// A world-aligned wire box around @p bounds at @p position, in namespace "physics".
+  void outline(const Eigen::Vector3d& position, const Bounds& bounds,
+               const std_msgs::ColorRGBA& c) {
+    const double margin = 0.005;
+    const double r = bounds.horizontalRadius + margin;
+    const Eigen::Vector3d lo(-r, -r, bounds.bottomZ - margin);
+    const Eigen::Vector3d hi(r, r, bounds.topZ + margin);
+    Marker& m = add("physics", Marker::LINE_LIST, Eigen::Isometry3d(Eigen::Translation3d(position)),
+                    Eigen::Vector3d(0.003, 0.0, 0.0), c);  // scale.x: line width [m]
+    const auto corner = [&](int k) {
+      geometry_msgs::Point p;
+      p.x = (k & 1) ? hi.x() : lo.x();
+      p.y = (k & 2) ? hi.y() : lo.y();
+      p.z = (k & 4) ? hi.z() : lo.z();
+      return p;
+    };
+    // The 12 edges: corner pairs that differ in one coordinate bit.
+    for (int k = 0; k < 8; ++k) {
+      for (int bit : {1, 2, 4}) {
+        if ((k & bit) == 0) {
+          m.points.push_back(corner(k));
+          m.points.push_back(corner(k | bit));
+        }
+      }
+    }
+  }
+
+  /// An arrow from @p from to @p to, in namespace "physics".
+  void arrow(const Eigen::Vector3d& from, const Eigen::Vector3d& to, const std_msgs::ColorRGBA& c) {
+    // scale: shaft diameter, head diameter, head length [m]
+    Marker& m = add("physics", Marker::ARROW, Eigen::Isometry3d::Identity(),
+                    Eigen::Vector3d(0.004, 0.01, 0.015), c);
+    m.points.resize(2);
+    m.points[0] = toPoseMsg(from, Eigen::Quaterniond::Identity()).position;
+    m.points[1] = toPoseMsg(to, Eigen::Quaterniond::Identity()).position;
+  }
+
+  /// The physics ground plane: a thin slab whose top is just below @p z (so that regions
+  /// drawn at the same height stay visible), covering @p lo .. @p hi in x and y.
+  void ground(double z, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+    const double thickness = 0.004;
+    const Eigen::Vector2d centre = 0.5 * (lo + hi);
+    add("ground", Marker::CUBE,
+        Eigen::Isometry3d(Eigen::Translation3d(centre.x(), centre.y(), z - 0.0015 - thickness / 2)),
+        Eigen::Vector3d(hi.x() - lo.x(), hi.y() - lo.y(), thickness),
+        colour(0.62f, 0.52f, 0.40f, 0.55f));
   }
 
   visualization_msgs::MarkerArray take() { return std::move(array_); }
@@ -186,6 +240,35 @@ class MarkerBuilder {
   int labels_ = 0;
 };
 
+/// Whether the simulation moved, turned or dropped the object beyond the tolerances (the
+/// opposite of the core's per-object stability).
+bool unsettled(const PhysicsOutcome& o, const PhysicsSettings& settings) {
+  return o.fallen || o.moved >= settings.positionTolerance ||
+         o.turned >= settings.rotationTolerance;
+}
+
+std::string physicsLabel(std::string_view name, const PhysicsOutcome& o,
+                         const PhysicsSettings& settings) {
+  std::ostringstream text;
+  text << name << ':' << std::fixed;
+  if (o.fallen) {
+    text << " fell,";
+  }
+  text << " moved " << std::setprecision(3) << o.moved << " m";
+  if (o.turned >= settings.rotationTolerance) {
+    text << ", turned " << std::setprecision(2) << o.turned << " rad";
+  }
+  return text.str();
+}
+
+/// x-y extent of what is drawn, so that the ground plane lies under all of it: @p p with
+/// @p half on either side.
+void growExtent(const Eigen::Vector3d& p, const Eigen::Vector2d& half, Eigen::Vector2d& lo,
+                Eigen::Vector2d& hi) {
+  lo = lo.cwiseMin(p.head<2>() - half);
+  hi = hi.cwiseMax(p.head<2>() + half);
+}
+
 }  // namespace
 
 visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
@@ -193,6 +276,11 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
                                                  const std::string& frameId,
                                                  const ros::Time& stamp) {
   MarkerBuilder builder(frameId, stamp);
+  const PhysicsSettings& physics = request.physics;
+  const bool settled = scene.simulated && scene.physicsMode == PhysicsMode::Settle;
+  const std_msgs::ColorRGBA alarm = colour(1.0f, 0.35f, 0.1f, 1.0f);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
   // Labels float a little above the top of the geometry (its top offset after the pose).
   const double gap = 0.02;
   for (const FixtureSpec& f : request.fixtures) {
@@ -200,16 +288,69 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
                    colour(0.55f, 0.55f, 0.55f, 0.6f));
     builder.label(f.name, f.position, f.object->topOffset.z() + gap);
   }
-  for (const ObjectPlacement& p : scene.placements) {
-    if (!p.hidden) {
-      builder.object("objects", *p.object, p.position, p.orientation, objectColour(p.name));
-      builder.label(p.name, p.position, p.object->topOffset.z() + gap);
+  for (std::size_t i = 0; i < scene.placements.size(); ++i) {
+    const ObjectPlacement& p = scene.placements[i];
+    if (p.hidden) {
+      continue;
     }
+    const std_msgs::ColorRGBA c = objectColour(p.name);
+    builder.object("objects", *p.object, p.position, p.orientation, c);
+    const PhysicsOutcome* o =
+        scene.simulated && i < scene.physics.size() ? &scene.physics[i] : nullptr;
+    growExtent(o ? o->sampledPosition : p.position,
+               Eigen::Vector2d::Constant(p.object->horizontalRadius), lo, hi);
+    if (o == nullptr || !unsettled(*o, physics)) {
+      builder.label(p.name, p.position, p.object->topOffset.z() + gap);
+      continue;
+    }
+    // Unsettled: a red outline where the answer has it; under settle also a faint copy at the
+    // sampled pose and an arrow to where it went. The label stays where it was sampled when it
+    // fell (a fallen object may lie far below the table, out of view).
+    const Bounds bounds = shapesBounds(p.object->shapes, p.orientation);
+    builder.outline(p.position, bounds, alarm);
+    Eigen::Vector3d labelAt = p.position;
+    double top = bounds.topZ;
+    if (settled) {
+      std_msgs::ColorRGBA faint = c;
+      faint.a = 0.3f;
+      builder.object("sampled", *p.object, o->sampledPosition, o->sampledOrientation, faint);
+      builder.arrow(o->sampledPosition, p.position, alarm);
+      if (o->fallen) {
+        labelAt = o->sampledPosition;
+        top = p.object->topOffset.z();
+      }
+    }
+    // A little higher than a name: clear of the wire box.
+    builder.label(physicsLabel(p.name, *o, physics), labelAt, top + 1.5 * gap, alarm);
   }
   for (const SamplerRegion& region : samplerRegions(request, scene)) {
     builder.region(region);
+    if (region.triangles.empty()) {
+      growExtent(region.centre, 0.5 * region.size, lo, hi);
+    }
+    for (const Eigen::Vector3d& v : region.triangles) {
+      growExtent(v, Eigen::Vector2d::Zero(), lo, hi);
+    }
+  }
+  if (physics.groundZ && lo.x() <= hi.x()) {
+    const double margin = 0.25;  // [m] around the objects and regions
+    builder.ground(*physics.groundZ, lo - Eigen::Vector2d::Constant(margin),
+                   hi + Eigen::Vector2d::Constant(margin));
   }
   return builder.take();
+}
+
+geometry_msgs::PoseArray makeScenePoses(const SceneResult& scene, const std::string& frameId,
+                                        const ros::Time& stamp) {
+  geometry_msgs::PoseArray poses;
+  poses.header.frame_id = frameId;
+  poses.header.stamp = stamp;
+  for (const ObjectPlacement& p : scene.placements) {
+    if (!p.hidden) {
+      poses.poses.push_back(toPoseMsg(p.position, p.orientation));
+    }
+  }
+  return poses;
 }
 
 }  // namespace ros_interface

@@ -1,6 +1,8 @@
 // The real node through its real interfaces: service calls, tf frames, markers, reload.
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <roscpp/GetLoggers.h>
+#include <roscpp/SetLoggerLevel.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
@@ -669,6 +671,44 @@ TEST_F(PlacementServerTest, MjcfParamObject) {
                                 "text"),
             std::string::npos)
       << broken.message;
+}
+
+std::map<std::string, std::string> loggerLevels() {
+  roscpp::GetLoggers list;
+  EXPECT_TRUE(ros::service::call("/placement_server/get_loggers", list));
+  std::map<std::string, std::string> levels;
+  for (const auto& logger : list.response.loggers) {
+    levels[logger.name] = logger.level;
+  }
+  return levels;
+}
+
+bool setLoggerLevel(const std::string& logger, const std::string& level) {
+  roscpp::SetLoggerLevel set;
+  set.request.logger = logger;
+  set.request.level = level;
+  return ros::service::call("/placement_server/set_logger_level", set);
+}
+
+// rqt_logger_level's first steps: list the loggers, then set roscpp's own to debug. Debian 12's
+// rosconsole frees log4cxx's loggers when it lists them, and roscpp's own get_loggers crashed
+// the node at its next message (every connection logs at debug); the node's own does not.
+TEST_F(PlacementServerTest, LoggerLevelsChangeWhileTheNodeKeepsServing) {
+  std::map<std::string, std::string> levels = loggerLevels();
+  ASSERT_EQ(levels.count("ros.roscpp"), 1u);
+  EXPECT_EQ(levels.at("ros.roscpp"), "info");
+  EXPECT_EQ(levels.at("ros.placement_samplers"), "info");
+  ASSERT_TRUE(setLoggerLevel("ros.roscpp", "debug"));
+  for (std::uint64_t seed = 60; seed < 63; ++seed) {
+    const SamplePlacements srv = call(seeded(seed));  // a new connection each, logged at debug
+    EXPECT_TRUE(srv.response.success) << srv.response.message;
+  }
+  levels = loggerLevels();
+  EXPECT_EQ(levels.at("ros.roscpp"), "debug");
+  EXPECT_EQ(levels.at("ros.roscpp.roscpp_internal"), "debug");  // inherited
+  ASSERT_TRUE(setLoggerLevel("ros.roscpp", "info"));
+  EXPECT_EQ(loggerLevels().at("ros.roscpp"), "info");
+  EXPECT_TRUE(call(seeded(63)).response.success);
 }
 
 // Concurrent clients get, for each seed, the answer a lone client gets.

@@ -1,6 +1,8 @@
 // What the node shows of its latest scene, seen by real subscribers: tf frames that go away
 // with their scene, the latched ~scene topic, labelled markers with stable colours, the notes
-// of an answer, and light services that answer while every sampling thread is busy.
+// of an answer, the latched ~poses, and light services that answer while every sampling thread is
+// busy.
+#include <geometry_msgs/PoseArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
@@ -232,6 +234,42 @@ TEST_F(SceneLifecycleTest, StaticFramesHoldTheCurrentSceneOnly) {
                                            "test/cube", "test/can", "test/ball", "test/pill"}));
   nh.setParam("/placement_server/tf_static", false);
   ASSERT_TRUE(reload().response.success);
+}
+
+// ~poses: the placed objects of the latest scene as a PoseArray (the hidden pill left out), in
+// sampling order; latched; neither a dry run nor a failure replaces it; a reload empties it.
+TEST_F(SceneLifecycleTest, PosesCarryTheLatestSceneUntilAReload) {
+  Latest<geometry_msgs::PoseArray> poses("/placement_server/poses");
+  const SamplePlacements srv = call(seeded(61));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  std::vector<geometry_msgs::Pose> expected;
+  for (const auto& p : srv.response.scenes[0].placements) {
+    if (p.name != "pill") {
+      expected.push_back(p.pose);
+    }
+  }
+  ASSERT_EQ(expected.size(), 5u);
+  ASSERT_TRUE(poses.waitUntil(
+      [&](const geometry_msgs::PoseArray& m) { return m.poses == expected; }, 10.0));
+  EXPECT_EQ(poses.get()->header.frame_id, "world");
+  EXPECT_GT(poses.get()->header.stamp.toSec(), 0.0);
+
+  SamplePlacements::Request dry = seeded(62);
+  dry.dry_run = true;
+  ASSERT_TRUE(call(dry).response.success);
+  SamplePlacements::Request hopeless = seeded(63);
+  hopeless.max_attempts = 5;
+  hopeless.fixtures.push_back(placement_samplers::test::tableCoveringWall());
+  ASSERT_FALSE(call(hopeless).response.success);
+  ros::WallDuration(0.5).sleep();
+  Latest<geometry_msgs::PoseArray> late("/placement_server/poses");
+  ASSERT_TRUE(late.waitUntil([](const geometry_msgs::PoseArray&) { return true; }, 10.0));
+  EXPECT_EQ(late.get()->poses, expected);
+
+  EXPECT_TRUE(reload().response.success);
+  ASSERT_TRUE(
+      poses.waitUntil([](const geometry_msgs::PoseArray& m) { return m.poses.empty(); }, 10.0));
+  EXPECT_EQ(poses.get()->header.frame_id, "world");
 }
 
 TEST_F(SceneLifecycleTest, ReloadSaysWhenThreadsTakeEffect) {

@@ -17,20 +17,22 @@
 #include <thread>
 #include <vector>
 
+#include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "placement_samplers/PlacedScene.h"
 #include "placement_samplers/SamplePlacements.h"
 #include "placement_samplers/ValidatePlacements.h"
+#include "placement_samplers/ros/logger_services.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {
 
 /// The placement_server node: reads the configuration from its private namespace, serves
-/// ~sample_placements, ~reload and ~ping, and shows the latest scene as tf frames, ~markers and
-/// the latched ~scene. It converts and wires; the sampling is the core library's.
+/// ~sample_placements, ~reload and ~ping, and shows the latest scene as tf frames, ~markers,
+/// the latched ~scene and ~poses. It converts and wires; the sampling is the core library's.
 ///
 /// Threads: sampling calls run on the global callback queue (the caller spins it with
 /// threads() threads); ~reload and ~ping have a queue and thread of their own, so they answer
@@ -82,6 +84,7 @@ class PlacementServer {
     std::vector<geometry_msgs::TransformStamped> frames;
     visualization_msgs::MarkerArray markers;
     std::optional<PlacedScene> scene;
+    geometry_msgs::PoseArray poses;  // ~poses; an empty frame_id before the first scene
   };
 
   std::shared_ptr<const SceneGenerator> generator() const;
@@ -112,6 +115,8 @@ class PlacementServer {
   ros::ServiceServer pingService_;
   ros::Publisher markerPublisher_;
   ros::Publisher scenePublisher_;
+  ros::Publisher posesPublisher_;
+  LoggerServices loggerServices_;  // ~get_loggers that does not crash the node
   ros::Publisher tfPublisher_;
   ros::Publisher tfStaticPublisher_;
   Shown shown_;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <geometry_msgs/PoseArray.h>
 #include <ros/time.h>
 #include <std_msgs/ColorRGBA.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -17,10 +18,22 @@ namespace ros_interface {
 /// the name of each above it ("labels"), each uniform sampler's region ("regions": a thin
 /// translucent box for x_range/y_range, a TRIANGLE_LIST for other shapes) and its keep-out zones
 /// ("keep_out", red triangles). Hidden objects are left out.
+///
+/// A simulated object that fell, or moved or turned by the physics tolerances or more, gets a
+/// red wire box around it ("physics") and a red label saying so ("cube: fell, moved 0.412 m,
+/// turned 1.57 rad"); under settle also a faint copy at its sampled pose ("sampled") and an
+/// arrow from there to its settled position ("physics"), and a fallen object's label stays
+/// above its sampled pose. With the configuration's ground_z, a thin slab ("ground") under the
+/// objects and regions shows the plane.
 visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
                                                  const SceneResult& scene,
                                                  const std::string& frameId,
                                                  const ros::Time& stamp);
+
+/// The poses of @p scene's placed objects in sampling order (hidden objects left out), for
+/// tools that show or take a geometry_msgs/PoseArray.
+geometry_msgs::PoseArray makeScenePoses(const SceneResult& scene, const std::string& frameId,
+                                        const ros::Time& stamp);
 
 /// The colour of the object called @p name: a hue from a hash of the name, so an object keeps
 /// its colour from call to call and run to run.
