@@ -534,7 +534,7 @@ TEST(ConfigBuilder, TopLevelValueErrors) {
 
 TEST(ConfigBuilder, ServiceSettings) {
   const auto defaults = buildSceneConfig(ConfigNode::makeRoot());
-  EXPECT_EQ(defaults->threads, 2u);
+  EXPECT_EQ(defaults->threads, 16u);
   EXPECT_EQ(defaults->maxScenesPerRequest, 10000u);
   EXPECT_EQ(defaults->maxRequestSeconds, 10.0);
   EXPECT_EQ(defaults->maxFixturesPerRequest, 1000u);
