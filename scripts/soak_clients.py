@@ -16,7 +16,7 @@ Exits non-zero on any wrong answer, any failure over a persistent proxy, any fai
 per-call failure other than rospy's "transport error completing service call", and RSS growth
 over 5 MiB. That transport error on a per-call proxy, when its retry is answered, is reported
 but not a failure: it is roscpp's (a stale POLLRDHUP closes a new connection that reuses a
-just-closed descriptor, docs/reliability.md, issue 18), and it hits a bare roscpp service too.
+just-closed descriptor, docs/reliability.md, "Connection churn"), and it hits a bare roscpp service too.
 """
 import argparse
 import collections

@@ -8,7 +8,7 @@ namespace bench {
 void benchClutter(const Options& options) {
   struct Point {
     int n;
-    double robosuiteMs;  ///< [ms/scene] from issue 5, 0 = not given
+    double robosuiteMs;  ///< [ms/scene] robosuite's own sampler, 0 = not given
   };
   const Point points[] = {{5, 0.06}, {10, 0.19}, {20, 0.76}, {40, 5.0}, {50, 0.0}};
   std::printf(
@@ -61,7 +61,7 @@ void benchClutter(const Options& options) {
       logLogSlope(ns, seeded), logLogSlope(ns, reused), logLogSlope(ns, attempts));
 }
 
-/// Strategies rejection and free_space (issue 16) on the clutter scene, N = 5..60: time per
+/// Strategies rejection and free_space on the clutter scene, N = 5..60: time per
 /// scene with its seeding, failures over statScenes seeded scenes.
 void benchStrategies(const Options& options) {
   const int points[] = {5, 10, 20, 30, 40, 50, 60};

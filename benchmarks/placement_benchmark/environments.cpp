@@ -9,7 +9,7 @@ void benchEnvironments(const Options& options) {
   struct Env {
     const char* name;
     const char* file;
-    double robosuiteUs;  ///< [us/scene], from issue 5
+    double robosuiteUs;  ///< [us/scene], robosuite's own sampler
   };
   const Env envs[] = {{"Lift", "lift.yaml", 8.8},
                       {"Stack", "stack.yaml", 26.0},
@@ -39,8 +39,8 @@ void benchEnvironments(const Options& options) {
       "sample: engine seeded once and reused; +seed: engine = sceneEngine(seed, i) per "
       "scene (one scene alone);\nbatch1t: many scenes, as the service and sample_scenes "
       "take them (blocks of 8192 through sampleSceneRange,\n1 thread, results built); old: "
-      "robosuite's scan of every entry, unpacked\n(the radius test "
-      "before issue 5).\n");
+      "robosuite's scan of every entry, unpacked\n(as robosuite's "
+      "own loop tests them).\n");
 }
 
 void benchBatch(const Options& options) {

@@ -1,5 +1,5 @@
 #pragma once
-// placement_benchmark --only physics: MuJoCo's model build and settling (issue 15).
+// placement_benchmark --only physics: MuJoCo's model build and settling.
 
 #include <string>
 

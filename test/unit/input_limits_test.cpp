@@ -1,4 +1,4 @@
-// Bad input that must be refused before it can hurt the process (issue 11): trees walked without
+// Bad input that must be refused before it can hurt the process: trees walked without
 // recursion, inputs a library cannot survive refused first, documented limits on bytes, values,
 // links, triangles and nesting, finite poses for every accepted configuration, request limits,
 // escaped names, and memory returned after large batches. Large inputs are generated here.

@@ -1,4 +1,4 @@
-// Physics settings (issue 15): configuration keys and their errors, densities, and physics
+// Physics settings: configuration keys and their errors, densities, and physics
 // none leaving sampling untouched. The simulated scenes are in physics_test.cpp.
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Physics (issue 15): MuJoCo's check and settling of sampled scenes, through the real builder
+// Physics: MuJoCo's check and settling of sampled scenes, through the real builder
 // and SceneGenerator with small inline configurations.
 
 #include <gtest/gtest.h>
