@@ -11,6 +11,7 @@
 #include "placement_samplers/process/malloc_tuning.hpp"
 #include "placement_samplers/sampling/failure_summary.hpp"
 #include "placement_samplers/sampling/random.hpp"
+#include "placement_samplers/text.hpp"
 #include "placement_samplers/ros/conversions.hpp"
 #include "placement_samplers/ros/param_reader.hpp"
 #include "placement_samplers/ros/scene_markers.hpp"
@@ -104,18 +105,19 @@ void PlacementServer::start(const ros::WallDuration& masterPeriod) {
     tfRate_ = config.tfRate;
   }
   for (const std::string& warning : config.warnings) {
-    ROS_WARN_STREAM("placement_server: " << warning);
+    ROS_WARN_STREAM(ros::this_node::getName() << ": " << warning);
   }
   advertise();
   lightSpinner_ = std::make_unique<ros::AsyncSpinner>(1, &lightQueue_);
   lightSpinner_->start();
   publisher_ = std::thread(&PlacementServer::publishLoop, this);
   watcher_ = std::thread(&PlacementServer::watchLoop, this, masterPeriod);
-  ROS_INFO_STREAM("placement_server: " << config.objects.size() << " objects, "
-                                       << config.fixtures.size() << " fixtures; serving "
-                                       << sampleService_.getService() << "; frames "
-                                       << config.tfPrefix.value_or(defaultTfPrefix_) << "<name> on "
-                                       << (config.tfStatic ? "/tf_static" : "/tf"));
+  ROS_INFO_STREAM(ros::this_node::getName()
+                  << ": " << countText(config.objects.size(), "object") << ", "
+                  << countText(config.fixtures.size(), "fixture") << "; serving "
+                  << sampleService_.getService() << "; frames "
+                  << config.tfPrefix.value_or(defaultTfPrefix_) << "<name> on "
+                  << (config.tfStatic ? "/tf_static" : "/tf"));
 }
 
 void PlacementServer::advertise() {
@@ -374,22 +376,22 @@ bool PlacementServer::reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Res
     }
     pendingReady_.notify_all();
     response.success = true;
-    response.message = "configuration reloaded: " + std::to_string(config.objects.size()) +
-                       " objects, " + std::to_string(config.fixtures.size()) + " fixtures";
+    response.message = "configuration reloaded: " + countText(config.objects.size(), "object") +
+                       ", " + countText(config.fixtures.size(), "fixture");
     for (const std::string& warning : config.warnings) {
       response.message += "; warning: " + warning;
-      ROS_WARN_STREAM("placement_server: " << warning);
+      ROS_WARN_STREAM(ros::this_node::getName() << ": " << warning);
     }
     if (config.threads != threads_) {
       response.message += "; threads " + std::to_string(config.threads) +
                           " takes effect when the node restarts (serving with " +
                           std::to_string(threads_) + ")";
     }
-    ROS_INFO_STREAM("placement_server: " << response.message);
+    ROS_INFO_STREAM(ros::this_node::getName() << ": " << response.message);
   } catch (const std::exception& e) {
     response.success = false;
     response.message = std::string("configuration refused, the previous one stays: ") + e.what();
-    ROS_ERROR_STREAM("placement_server: " << response.message);
+    ROS_ERROR_STREAM(ros::this_node::getName() << ": " << response.message);
   }
   return true;
 }

@@ -179,7 +179,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
         return fail(context, &object, attempt - 1,
                     "could not place object " + quoteText(object.name) + " with sampler " +
                         quoteText(name()) + ": no free position is left (strategy free_space, " +
-                        std::to_string(attempt - 1) + " attempts)");
+                        countText(attempt - 1, "attempt") + ")");
       }
       if ((attempt & 1023u) == 0 && context.expired()) {
         return failOutOfTime(context, object, attempt - 1);

@@ -738,8 +738,8 @@ TEST(InputLimits, PlacementsPerAnswerAreLimited) {
     FAIL() << "accepted";
   } catch (const RequestError& e) {
     EXPECT_STREQ(e.what(),
-                 "1 scenes of 1000 placements each exceed max_placements_per_request (999): ask "
-                 "for at most 1 scenes per request");
+                 "1 scene of 1000 placements exceeds max_placements_per_request (999): ask for "
+                 "at most 1 scene per request");
   }
   // A service request: scenes per request first, then the answer's size.
   const SceneGenerator limited(buildFromYaml(yaml + "max_scenes_per_request: 5\n"));
