@@ -141,9 +141,9 @@ TEST_F(ValidatePlacementsTest, SettledScenesValidateAtTheirSampledPoses) {
 
 // A real scene has no hidden object: the configuration's hidden pill is not required.
 TEST_F(ValidatePlacementsTest, HiddenObjectsNeedNotBeGiven) {
+  const SamplePlacements::Response sampled = sample(9, ValidatePlacements::Request::CHECK_DEFAULT);
   ValidatePlacements::Request request;
-  for (const auto& p :
-       sample(9, ValidatePlacements::Request::CHECK_DEFAULT).scenes.at(0).placements) {
+  for (const auto& p : sampled.scenes.at(0).placements) {
     if (p.name != "pill") {
       request.placements.push_back(p);
     }

@@ -221,7 +221,7 @@ TEST(InputLimits, UrdfLinksBytesAndNestingAreBounded) {
   }
   ok += "</robot>";
   EXPECT_EQ(configError([&] { urdfCollisionShapes(ok, "", meshes); }),
-            "no collision geometry in robot 'r' (1 links)");
+            "no collision geometry in robot 'r' (1 link)");
 }
 
 TEST(InputLimits, UrdfFileIsReadWithinItsLimit) {
@@ -755,7 +755,7 @@ TEST(InputLimits, PlacementsPerAnswerAreLimited) {
     small.checkRequestSize(one, 1);
     FAIL() << "accepted";
   } catch (const RequestError& e) {
-    EXPECT_NE(std::string(e.what()).find("exceed max_placements_per_request (999)"),
+    EXPECT_NE(std::string(e.what()).find("exceeds max_placements_per_request (999)"),
               std::string::npos);
   }
   // Scene indices stay below 2^64, for any caller.
