@@ -62,14 +62,15 @@ def main():
     if response.message:
         print("message: %s" % response.message)
     for index, scene in enumerate(response.scenes):
-        print("scene %d%s" % (args.first_scene + index,
-                              ("  stable: %s" % scene.stable) if scene.simulated else ""))
+        print("scene %d%s%s" % (args.first_scene + index,
+                                ("  stable: %s" % scene.stable) if scene.simulated else "",
+                                "" if scene.success else "  FAILED: %s" % scene.message))
         for p in scene.placements:
             q = p.pose.orientation
             line = ("  %-12s %-14s xyz [% .4f % .4f % .4f]  xyzw [% .3f % .3f % .3f % .3f]  attempts %d"
                     % (p.name, p.sampler, p.pose.position.x, p.pose.position.y, p.pose.position.z,
                        q.x, q.y, q.z, q.w, p.attempts))
-            if scene.simulated:
+            if p.simulated:  # hidden objects are not simulated
                 line += "  moved %.4f m  turned %.3f rad%s" % (p.moved, p.turned,
                                                               "  FALLEN" if p.fallen else "")
             print(line)

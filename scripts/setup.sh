@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Shared set-up for scripts/test and scripts/run: Debian packages, environment, build.
-# Source it; it defines ps_install, ps_env and ps_build.
+# Source it; it defines ps_install, ps_env, ps_build, ps_source, and ps_launch, ps_call and
+# ps_stop_launch for the scripts that start the server.
 
 PS_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # The build lives next to the checkout, not inside it: rosrun ignores every program under the
@@ -89,6 +90,68 @@ ps_service_name() {
     esac
   done
   echo "${ns:+/${ns#/}}/$name/sample_placements"
+}
+
+# Starts `roslaunch placement_samplers placement_server.launch ARGS...` in the background, its
+# output (unbuffered) in the file $PS_LAUNCH_LOG; $PS_LAUNCH_PID is roslaunch's pid. The launch
+# file's node is required: roslaunch ends when the node exits, which ps_call watches for.
+ps_launch() {
+  PS_LAUNCH_LOG=$(mktemp "${TMPDIR:-/tmp}/placement_server_launch.XXXXXX")
+  PYTHONUNBUFFERED=1 roslaunch placement_samplers placement_server.launch "$@" \
+    >"$PS_LAUNCH_LOG" 2>&1 &
+  PS_LAUNCH_PID=$!
+}
+
+# Stops what ps_launch started (roslaunch stops its nodes, and the master when it started one)
+# and removes the log. Safe to call twice and from an exit trap under `set -e`.
+ps_stop_launch() {
+  if [ -n "${PS_CLIENT_PID:-}" ]; then
+    kill "$PS_CLIENT_PID" 2>/dev/null || true
+    wait "$PS_CLIENT_PID" 2>/dev/null || true
+    PS_CLIENT_PID=""
+  fi
+  if [ -n "${PS_LAUNCH_PID:-}" ]; then
+    kill -INT "$PS_LAUNCH_PID" 2>/dev/null || true
+    wait "$PS_LAUNCH_PID" 2>/dev/null || true
+    PS_LAUNCH_PID=""
+  fi
+  if [ -n "${PS_LAUNCH_LOG:-}" ]; then
+    rm -f "$PS_LAUNCH_LOG"
+    PS_LAUNCH_LOG=""
+  fi
+}
+
+# Runs `sample_client.py --service SERVICE CLIENT_ARGS...` against the server ps_launch started
+# and returns the client's status (0 = placed, 1 = not placed). When roslaunch ends first (the
+# node exited at start-up, e.g. an invalid configuration), it stops the client at once, prints
+# the node's FATAL line (or the end of roslaunch's output) on stderr and returns 2.
+ps_call() {
+  local service=$1 done_pid="" status=0
+  shift
+  rosrun placement_samplers sample_client.py --service "$service" "$@" &
+  PS_CLIENT_PID=$!
+  wait -n -p done_pid "$PS_CLIENT_PID" "$PS_LAUNCH_PID" || status=$?
+  if [ "$done_pid" = "$PS_CLIENT_PID" ]; then
+    PS_CLIENT_PID=""
+    return "$status"
+  fi
+  PS_LAUNCH_PID=""  # reaped
+  # SIGKILL: a client told to stop would still say "not available", which is not the reason.
+  kill -KILL "$PS_CLIENT_PID" 2>/dev/null || true
+  wait "$PS_CLIENT_PID" 2>/dev/null || true
+  PS_CLIENT_PID=""
+  local fatal
+  # rosconsole colours the line: the escapes go.
+  fatal=$(sed 's/\x1b\[[0-9;]*m//g' "$PS_LAUNCH_LOG" | grep -m 5 -E '^\[FATAL\]' || true)
+  {
+    echo "the placement server exited before serving $service:"
+    if [ -n "$fatal" ]; then
+      echo "$fatal"
+    else
+      tail -n 15 "$PS_LAUNCH_LOG"
+    fi
+  } >&2
+  return 2
 }
 
 # Sources the build's devel/setup.bash (it fails under set -u).

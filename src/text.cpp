@@ -90,4 +90,14 @@ std::string escapeText(std::string_view text, std::size_t maxShown) {
 
 std::string quoteText(std::string_view text) { return "'" + escapeText(text) + "'"; }
 
+std::string countText(std::uint64_t count, std::string_view noun) {
+  std::string out = std::to_string(count);
+  out += ' ';
+  out += noun;
+  if (count != 1) {
+    out += 's';
+  }
+  return out;
+}
+
 }  // namespace placement_samplers

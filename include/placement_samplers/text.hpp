@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -14,5 +15,9 @@ std::string escapeText(std::string_view text, std::size_t maxShown = 1000);
 
 /// escapeText(@p text) between single quotes: 'name'.
 std::string quoteText(std::string_view text);
+
+/// @p count and @p noun, the noun in the plural unless the count is 1: "1 fixture",
+/// "2 fixtures", "0 attempts". @p noun is the singular of a noun whose plural adds "s".
+std::string countText(std::uint64_t count, std::string_view noun);
 
 }  // namespace placement_samplers

@@ -203,7 +203,7 @@ const std::string& ConfigNode::asString() const {
 }
 
 std::vector<double> ConfigNode::asNumbers(std::size_t n) const {
-  const std::string what = "a list of " + std::to_string(n) + " numbers";
+  const std::string what = "a list of " + countText(n, "number");
   if (type_ != Type::List || list_.size() != n) {
     expected(what);
   }

@@ -221,7 +221,7 @@ std::vector<Shape> urdfCollisionShapes(const std::string& urdfXml, const std::st
     collector.addTree(*model->getRoot(), Eigen::Isometry3d::Identity());
     if (collector.shapes().empty()) {
       throw ConfigError("no collision geometry in robot " + quoteText(model->getName()) + " (" +
-                        std::to_string(model->links_.size()) + " links)");
+                        countText(model->links_.size(), "link") + ")");
     }
   } else {
     const urdf::LinkConstSharedPtr l = model->getLink(link);

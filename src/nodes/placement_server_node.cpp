@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
   try {
     server.start();
   } catch (const std::exception& e) {
-    ROS_FATAL_STREAM("placement_server: invalid configuration: " << e.what());
+    // Named as the node runs (namespace, remapped name), as the parameter paths in e.what().
+    ROS_FATAL_STREAM(ros::this_node::getName() << ": invalid configuration: " << e.what());
     return 1;
   }
   ros::AsyncSpinner spinner(server.threads());

@@ -246,8 +246,8 @@ void NpzWriter::write(const std::vector<SceneResult>& scenes) {
   Impl& d = *impl_;
   const std::size_t k = scenes.size();
   if (k > d.numScenes - d.rows) {
-    throw OutputError(d.shownPath + ": " + std::to_string(d.rows + k) +
-                      " scenes written into a file laid out for " + std::to_string(d.numScenes));
+    throw OutputError(d.shownPath + ": " + countText(d.rows + k, "scene") +
+                      " written into a file laid out for " + std::to_string(d.numScenes));
   }
   const std::size_t n = d.names.size();
   constexpr double kNan = std::numeric_limits<double>::quiet_NaN();

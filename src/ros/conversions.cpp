@@ -155,9 +155,11 @@ SampleRequest toSampleRequest(const SamplePlacements::Request& req) {
 
 placement_samplers::Scene toSceneMsg(const SceneResult& scene) {
   placement_samplers::Scene msg;
+  msg.success = scene.success;
+  msg.message = scene.message;
   msg.placements.reserve(scene.placements.size());
   msg.simulated = scene.simulated;
-  msg.stable = scene.stable;
+  msg.stable = scene.simulated && scene.stable;
   for (std::size_t i = 0; i < scene.placements.size(); ++i) {
     const ObjectPlacement& p = scene.placements[i];
     placement_samplers::Placement m;
@@ -165,12 +167,16 @@ placement_samplers::Scene toSceneMsg(const SceneResult& scene) {
     m.sampler = p.sampler;
     m.pose = toPoseMsg(p.position, p.orientation);
     m.attempts = p.attempts;
+    // Without a simulation the sampled pose is the pose: a unit quaternion, never zeros.
+    m.sampled_pose = m.pose;
     if (scene.simulated && i < scene.physics.size()) {
       const PhysicsOutcome& o = scene.physics[i];
+      m.sampled_pose = toPoseMsg(o.sampledPosition, o.sampledOrientation);
+      // Hidden objects are parked far away, out of the simulation.
+      m.simulated = !p.hidden;
       m.moved = o.moved;
       m.turned = o.turned;
       m.fallen = o.fallen;
-      m.sampled_pose = toPoseMsg(o.sampledPosition, o.sampledOrientation);
     }
     msg.placements.push_back(std::move(m));
   }

@@ -53,11 +53,15 @@ void answerValidation(const SceneGenerator& generator, const ValidatePlacements:
     std::vector<GivenPose> poses;
     poses.reserve(request.placements.size());
     for (const Placement& p : request.placements) {
+      // Validation is about sampled poses, as the CLI's: a simulated placement (an answer's
+      // under physics check or settle) is validated at its sampled_pose, since a settled pose
+      // need not validate; any other at its pose, which may have been edited or measured.
+      const geometry_msgs::Pose& given = p.simulated ? p.sampled_pose : p.pose;
       GivenPose pose;
       pose.name = p.name;
-      pose.position = Eigen::Vector3d(p.pose.position.x, p.pose.position.y, p.pose.position.z);
-      pose.orientation = Eigen::Quaterniond(p.pose.orientation.w, p.pose.orientation.x,
-                                            p.pose.orientation.y, p.pose.orientation.z);
+      pose.position = Eigen::Vector3d(given.position.x, given.position.y, given.position.z);
+      pose.orientation = Eigen::Quaterniond(given.orientation.w, given.orientation.x,
+                                            given.orientation.y, given.orientation.z);
       poses.push_back(std::move(pose));
     }
     const SceneVerdict verdict = validateScene(generator, prepared, poses, options);

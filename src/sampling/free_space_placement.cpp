@@ -177,6 +177,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     for (std::uint32_t attempt = 1; attempt <= limit && !placed; ++attempt) {
       if (cells.empty()) {
         return fail(context, &object, attempt - 1,
+                    // "1 attempts" stays: shipped outputs (scripts/same_output) hold this text.
                     "could not place object " + quoteText(object.name) + " with sampler " +
                         quoteText(name()) + ": no free position is left (strategy free_space, " +
                         std::to_string(attempt - 1) + " attempts)");

@@ -87,8 +87,8 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
                                     std::chrono::duration<double>(request.maxSeconds));
   }
   if (request.fixtures.size() > config.maxFixturesPerRequest) {
-    throw RequestError("the request has " + std::to_string(request.fixtures.size()) +
-                       " fixtures, more than max_fixtures_per_request (" +
+    throw RequestError("the request has " + countText(request.fixtures.size(), "fixture") +
+                       ", more than max_fixtures_per_request (" +
                        std::to_string(config.maxFixturesPerRequest) + ")");
   }
   prepared.fixtures = config.fixtures;
@@ -104,7 +104,7 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
     if ((i & 63u) == 63u && prepared.deadline &&
         std::chrono::steady_clock::now() > *prepared.deadline) {
       throw RequestError("the request ran out of time while checking its " +
-                         std::to_string(request.fixtures.size()) + " fixtures");
+                         countText(request.fixtures.size(), "fixture"));
     }
     const std::string label = "fixture " + quoteText(f.name);
     if (!isValidName(f.name)) {
@@ -217,8 +217,8 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
 
 void checkSceneRange(std::uint64_t first, std::uint64_t count) {
   if (count > 0 && count - 1 > std::numeric_limits<std::uint64_t>::max() - first) {
-    throw RequestError("first scene " + std::to_string(first) + " + " + std::to_string(count) +
-                       " scenes: scene indices must stay below 2^64");
+    throw RequestError("first scene " + std::to_string(first) + " + " + countText(count, "scene") +
+                       ": scene indices must stay below 2^64");
   }
 }
 
@@ -232,11 +232,11 @@ void SceneGenerator::checkAnswerSize(const PreparedRequest& request,
   const std::uint64_t limit = config_->maxPlacementsPerRequest;
   // perScene * numScenes > limit, without overflowing.
   if (perScene != 0 && numScenes > limit / perScene) {
-    throw RequestError(std::to_string(numScenes) + " scenes of " + std::to_string(perScene) +
-                       " placements each exceed max_placements_per_request (" +
-                       std::to_string(limit) + "): ask for at most " +
-                       std::to_string(std::max<std::uint64_t>(limit / perScene, 1)) +
-                       " scenes per request");
+    throw RequestError(
+        countText(numScenes, "scene") + " of " + countText(perScene, "placement") +
+        (numScenes == 1 ? " exceeds" : " each exceed") + " max_placements_per_request (" +
+        std::to_string(limit) + "): ask for at most " +
+        countText(std::max<std::uint64_t>(limit / perScene, 1), "scene") + " per request");
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
+#include "placement_samplers/text.hpp"
 #include "sampling/scene_physics.hpp"
 
 namespace placement_samplers {
@@ -106,7 +107,7 @@ class SceneGenerator::Worker {
       // Adding thousands of fixtures to FCL's broadphase takes long too: the clock covers it.
       if ((i & 63u) == 63u && expired()) {
         result.message = "not sampled: the request ran out of time while adding its " +
-                         std::to_string(fixtures.size()) + " fixtures";
+                         countText(fixtures.size(), "fixture");
         result.placements.clear();
         return;
       }

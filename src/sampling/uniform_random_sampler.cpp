@@ -296,8 +296,8 @@ bool UniformRandomSampler::failOutOfTime(SampleContext& context, const ObjectMod
                                          std::uint32_t attempts) const {
   return fail(context, &object, attempts,
               "stopped placing object " + quoteText(object.name) + " with sampler " +
-                  quoteText(name()) + " after " + std::to_string(attempts) +
-                  " attempts: the request ran out of time");
+                  quoteText(name()) + " after " + countText(attempts, "attempt") +
+                  ": the request ran out of time");
 }
 
 bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectModel& object,
@@ -310,7 +310,7 @@ bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectMod
   failure.attempts = limit;
   std::ostringstream out;
   out << "could not place object " << quoteText(object.name) << " with sampler "
-      << quoteText(name()) << " in " << limit << " attempts";
+      << quoteText(name()) << " in " << countText(limit, "attempt");
   if (counts != nullptr && !counts->empty()) {
     const auto most = std::max_element(counts->begin(), counts->end());
     const std::size_t index = static_cast<std::size_t>(most - counts->begin());

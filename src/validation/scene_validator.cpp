@@ -101,6 +101,11 @@ class Validator {
     const std::string& s = sampler.name();
     const auto given = given_.find(object.name);
     if (given == given_.end()) {
+      // A hidden object is parked far away by sampling; a scene arranged by hand or measured
+      // does not hold it, so it may be left out (a given pose of it is still checked).
+      if (sampler.params().hides) {
+        return;
+      }
       add(verdict, Violation::Kind::Missing, s, "", 0.0,
           "object " + quoteText(object.name) + " of sampler " + quoteText(s) + " is missing");
       return;

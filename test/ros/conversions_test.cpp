@@ -82,6 +82,68 @@ TEST(Conversions, PosesKeepEveryComponent) {
   EXPECT_EQ(pose.orientation.w, 0.5);
 }
 
+SceneResult twoPlacements() {
+  SceneResult scene;
+  scene.success = true;
+  const Eigen::Quaterniond turned(std::sqrt(0.5), 0.0, 0.0, std::sqrt(0.5));
+  scene.placements.emplace_back("cube", "TableSampler", turned, Eigen::Vector3d(0.1, 0.2, 0.83),
+                                nullptr, 3, false);
+  scene.placements.emplace_back("pill", "HideSampler", Eigen::Quaterniond::Identity(),
+                                Eigen::Vector3d(-15.0, -15.0, 10.06), nullptr, 1, true);
+  return scene;
+}
+
+TEST(Conversions, UnsimulatedScenesSayItAndCarryTheirPosesAsSampled) {
+  const placement_samplers::Scene msg = toSceneMsg(twoPlacements());
+  EXPECT_TRUE(msg.success);
+  EXPECT_EQ(msg.message, "");
+  EXPECT_FALSE(msg.simulated);
+  EXPECT_FALSE(msg.stable);
+  ASSERT_EQ(msg.placements.size(), 2u);
+  for (const placement_samplers::Placement& p : msg.placements) {
+    EXPECT_FALSE(p.simulated) << p.name;
+    EXPECT_EQ(p.sampled_pose, p.pose) << p.name;  // a unit quaternion, not zeros
+    EXPECT_EQ(p.moved, 0.0);
+    EXPECT_EQ(p.turned, 0.0);
+    EXPECT_FALSE(p.fallen);
+  }
+  EXPECT_DOUBLE_EQ(msg.placements[0].sampled_pose.orientation.w, std::sqrt(0.5));
+  EXPECT_EQ(msg.placements[1].sampled_pose.orientation.w, 1.0);
+}
+
+TEST(Conversions, EachSceneCarriesItsOwnSuccessAndMessage) {
+  SceneResult failed = twoPlacements();
+  failed.success = false;
+  failed.message = "could not place object 'ball' with sampler 'TableSampler' in 1 attempt";
+  failed.placements.pop_back();
+  const placement_samplers::Scene msg = toSceneMsg(failed);
+  EXPECT_FALSE(msg.success);
+  EXPECT_EQ(msg.message, failed.message);
+  EXPECT_EQ(msg.placements.size(), 1u);
+}
+
+TEST(Conversions, SimulatedPlacementsButHiddenOnesAreMarkedSimulated) {
+  SceneResult scene = twoPlacements();
+  scene.simulated = true;
+  scene.stable = true;
+  scene.physics.resize(2);
+  scene.physics[0].moved = 0.002;
+  scene.physics[0].turned = 0.01;
+  scene.physics[0].sampledPosition = Eigen::Vector3d(0.1, 0.2, 0.84);
+  scene.physics[0].sampledOrientation = scene.placements[0].orientation;
+  scene.physics[1].sampledPosition = scene.placements[1].position;
+  const placement_samplers::Scene msg = toSceneMsg(scene);
+  EXPECT_TRUE(msg.simulated);
+  EXPECT_TRUE(msg.stable);
+  EXPECT_TRUE(msg.placements[0].simulated);
+  EXPECT_EQ(msg.placements[0].moved, 0.002);
+  EXPECT_EQ(msg.placements[0].turned, 0.01);
+  EXPECT_EQ(msg.placements[0].sampled_pose.position.z, 0.84);  // settled: pose is 0.83
+  EXPECT_EQ(msg.placements[0].pose.position.z, 0.83);
+  EXPECT_FALSE(msg.placements[1].simulated);  // hidden: out of the simulation
+  EXPECT_EQ(msg.placements[1].sampled_pose, msg.placements[1].pose);
+}
+
 }  // namespace
 }  // namespace ros_interface
 }  // namespace placement_samplers

@@ -246,6 +246,75 @@ TEST_F(PlacementServerTest, FailureNamesObjectSamplerAndBlocker) {
             "overlapped fixture 'wall'");
 }
 
+// In a batch, each scene says whether it was placed and why not; the answer's message is the
+// first failed scene's, with the count.
+TEST_F(PlacementServerTest, EachSceneOfABatchSaysWhetherItWasPlacedAndWhy) {
+  SamplePlacements::Request r = seeded(21, 40);
+  r.sampler = "TableSampler";
+  r.max_attempts = 1;
+  r.dry_run = true;
+  placement_samplers::Fixture ball;  // blocks a good part of the table: some scenes fail
+  ball.name = "boulder";
+  ball.shape.type = shape_msgs::SolidPrimitive::SPHERE;
+  ball.shape.dimensions = {0.2};
+  ball.pose.position.z = 0.9;
+  ball.pose.orientation.w = 1.0;
+  r.fixtures.push_back(ball);
+  const SamplePlacements srv = call(r);
+  EXPECT_FALSE(srv.response.success);
+  ASSERT_EQ(srv.response.scenes.size(), 40u);
+  std::size_t failed = 0;
+  std::size_t first = 40;
+  for (std::size_t i = 0; i < 40; ++i) {
+    const auto& scene = srv.response.scenes[i];
+    if (scene.success) {
+      EXPECT_EQ(scene.message, "") << i;
+      EXPECT_EQ(scene.placements.size(), 3u) << i;
+      continue;
+    }
+    ++failed;
+    first = std::min(first, i);
+    EXPECT_LT(scene.placements.size(), 3u) << i;
+    EXPECT_EQ(scene.message.rfind("could not place object '", 0), 0u) << scene.message;
+    EXPECT_NE(scene.message.find("in 1 attempt: 1 of them overlapped fixture 'boulder'"),
+              std::string::npos)
+        << scene.message;
+  }
+  ASSERT_GT(failed, 0u);
+  ASSERT_LT(failed, 40u);
+  EXPECT_EQ(srv.response.message, "scene " + std::to_string(first) + ": " +
+                                      srv.response.scenes[first].message + " (" +
+                                      std::to_string(failed) + " of 40 scenes failed)");
+}
+
+// Without physics nothing says simulated, and sampled_pose is the pose (a unit quaternion);
+// with physics check every placed object is simulated but the hidden one.
+TEST_F(PlacementServerTest, PhysicsFieldsFollowSimulated) {
+  SamplePlacements::Request r = seeded(31);
+  r.dry_run = true;
+  const SamplePlacements plain = call(r);
+  ASSERT_TRUE(plain.response.success) << plain.response.message;
+  const auto& scene = plain.response.scenes.at(0);
+  EXPECT_TRUE(scene.success);
+  EXPECT_FALSE(scene.simulated);
+  EXPECT_FALSE(scene.stable);
+  for (const auto& p : scene.placements) {
+    EXPECT_FALSE(p.simulated) << p.name;
+    EXPECT_EQ(p.sampled_pose, p.pose) << p.name;
+    EXPECT_EQ(p.moved, 0.0) << p.name;
+  }
+  r.physics = SamplePlacements::Request::PHYSICS_CHECK;
+  const SamplePlacements checked = call(r);
+  ASSERT_TRUE(checked.response.success) << checked.response.message;
+  const auto& simulated = checked.response.scenes.at(0);
+  EXPECT_TRUE(simulated.simulated);
+  ASSERT_EQ(simulated.placements.size(), 6u);
+  for (const auto& p : simulated.placements) {
+    EXPECT_EQ(p.simulated, p.name != "pill") << p.name;
+    EXPECT_EQ(p.sampled_pose, p.pose) << p.name;  // check keeps the sampled poses
+  }
+}
+
 // max_request_seconds (2 s in the test configuration) bounds an absurd max_attempts. With the
 // radius test the node proves there is no room (next test); the exact test alone it cannot.
 TEST_F(PlacementServerTest, TimeLimitStopsAHopelessRequest) {

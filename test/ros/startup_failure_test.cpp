@@ -42,10 +42,12 @@ TEST(PlacementServerStartup, ReversedRangeExitsNonZeroNamingTheParameter) {
   nh.setParam("/bad_server/samplers", samplers);
   const NodeRun run = runNode("bad_server");
   EXPECT_EQ(run.status, 1) << run.output;
-  EXPECT_NE(run.output.find("/bad_server/samplers[0]/x_range: expected [min, max] with min <= max, "
-                            "got [0.3, -0.3]"),
+  // Named after the node as it runs, not the name it was compiled with.
+  EXPECT_NE(run.output.find("/bad_server: invalid configuration: /bad_server/samplers[0]/x_range: "
+                            "expected [min, max] with min <= max, got [0.3, -0.3]"),
             std::string::npos)
       << run.output;
+  EXPECT_EQ(run.output.find("placement_server:"), std::string::npos) << run.output;
 }
 
 TEST(PlacementServerStartup, UnknownKeyExitsNonZeroNamingIt) {

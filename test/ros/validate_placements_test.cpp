@@ -109,6 +109,54 @@ TEST_F(ValidatePlacementsTest, ReasonsForMovedMissingAndUnknownObjects) {
   }
 }
 
+// A settled answer validates as it was sampled (its simulated placements at sampled_pose),
+// as the CLI validates sampled_position; its settled poses alone would not.
+TEST_F(ValidatePlacementsTest, SettledScenesValidateAtTheirSampledPoses) {
+  SamplePlacements srv;
+  srv.request.seed = 8;
+  srv.request.dry_run = true;
+  srv.request.physics = SamplePlacements::Request::PHYSICS_SETTLE;
+  ASSERT_TRUE(ros::service::call(kSample, srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ValidatePlacements::Request request;
+  request.placements = srv.response.scenes.at(0).placements;
+  ASSERT_TRUE(srv.response.scenes[0].simulated);
+  const ValidatePlacements::Response response = validate(request);
+  EXPECT_TRUE(response.valid);
+  for (const auto& object : response.objects) {
+    EXPECT_TRUE(object.reasons.empty()) << object.name << ": " << object.reasons[0].message;
+  }
+  // The settled poses as measured ones: the plate rests 1 cm below its sampled height.
+  for (auto& p : request.placements) {
+    p.simulated = false;
+  }
+  bool plateHeight = false;
+  for (const auto& object : validate(request).objects) {
+    for (const auto& reason : object.reasons) {
+      plateHeight = plateHeight || (object.name == "plate" && reason.kind == PoseViolation::HEIGHT);
+    }
+  }
+  EXPECT_TRUE(plateHeight);
+}
+
+// A real scene has no hidden object: the configuration's hidden pill is not required.
+TEST_F(ValidatePlacementsTest, HiddenObjectsNeedNotBeGiven) {
+  const SamplePlacements::Response sampled = sample(9, ValidatePlacements::Request::CHECK_DEFAULT);
+  ValidatePlacements::Request request;
+  for (const auto& p : sampled.scenes.at(0).placements) {
+    if (p.name != "pill") {
+      request.placements.push_back(p);
+    }
+  }
+  ASSERT_EQ(request.placements.size(), 5u);
+  const ValidatePlacements::Response response = validate(request);
+  EXPECT_TRUE(response.valid);
+  ASSERT_EQ(response.objects.size(), 6u);
+  EXPECT_EQ(response.objects[5].name, "pill");
+  EXPECT_TRUE(response.objects[5].valid);
+  EXPECT_TRUE(response.objects[5].reasons.empty());
+}
+
 TEST_F(ValidatePlacementsTest, BadRequestsGetAMessage) {
   ValidatePlacements::Request request;
   request.sampler = "NoSuchSampler";

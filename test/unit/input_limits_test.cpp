@@ -221,7 +221,7 @@ TEST(InputLimits, UrdfLinksBytesAndNestingAreBounded) {
   }
   ok += "</robot>";
   EXPECT_EQ(configError([&] { urdfCollisionShapes(ok, "", meshes); }),
-            "no collision geometry in robot 'r' (1 links)");
+            "no collision geometry in robot 'r' (1 link)");
 }
 
 TEST(InputLimits, UrdfFileIsReadWithinItsLimit) {
@@ -738,8 +738,8 @@ TEST(InputLimits, PlacementsPerAnswerAreLimited) {
     FAIL() << "accepted";
   } catch (const RequestError& e) {
     EXPECT_STREQ(e.what(),
-                 "1 scenes of 1000 placements each exceed max_placements_per_request (999): ask "
-                 "for at most 1 scenes per request");
+                 "1 scene of 1000 placements exceeds max_placements_per_request (999): ask for "
+                 "at most 1 scene per request");
   }
   // A service request: scenes per request first, then the answer's size.
   const SceneGenerator limited(buildFromYaml(yaml + "max_scenes_per_request: 5\n"));
@@ -755,7 +755,7 @@ TEST(InputLimits, PlacementsPerAnswerAreLimited) {
     small.checkRequestSize(one, 1);
     FAIL() << "accepted";
   } catch (const RequestError& e) {
-    EXPECT_NE(std::string(e.what()).find("exceed max_placements_per_request (999)"),
+    EXPECT_NE(std::string(e.what()).find("exceeds max_placements_per_request (999)"),
               std::string::npos);
   }
   // Scene indices stay below 2^64, for any caller.

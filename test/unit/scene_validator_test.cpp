@@ -190,6 +190,41 @@ TEST_F(SceneValidatorTest, UnknownMissingDuplicateReference) {
   EXPECT_TRUE(v.objects[2].valid) << "cube";
 }
 
+// A real scene has no hidden objects (sampling parks them 10 m away): they are not required.
+TEST(SceneValidatorHidden, HiddenObjectsMayBeLeftOutButAGivenOneIsChecked) {
+  std::string yaml = kConfig;
+  const std::string ball = "  ball: {shape: sphere, radius: 0.03}\n";
+  yaml.replace(yaml.find(ball), ball.size(),
+               ball + "  pill: {shape: capsule, radius: 0.02, length: 0.08}\n");
+  yaml += "hide: [pill]\n";
+  const SceneGenerator generator(buildSceneConfig(parseYaml(yaml, "test")));
+  const PreparedRequest prepared = generator.prepare(SampleRequest());
+  auto pose = [](const std::string& name, double x, double y, double z) {
+    return GivenPose{name, Eigen::Vector3d(x, y, z), Eigen::Quaterniond::Identity()};
+  };
+  std::vector<GivenPose> poses = {pose("plate", 0.0, 0.0, 0.82), pose("cup", 0.01, 0.0, 0.875),
+                                  pose("cube", 0.2, 0.2, 0.83), pose("ball", -0.2, 0.2, 0.84)};
+  SceneVerdict v = validateScene(generator, prepared, poses);
+  EXPECT_TRUE(v.valid);
+  ASSERT_EQ(v.objects.size(), 5u);
+  EXPECT_EQ(v.objects[4].name, "pill");
+  EXPECT_TRUE(v.objects[4].valid);
+  EXPECT_TRUE(v.objects[4].reasons.empty());
+  // Where sampling parks it: valid; on the table: not where the configuration puts it.
+  poses.push_back(pose("pill", -15.0, -15.0, 10.06));
+  EXPECT_TRUE(validateScene(generator, prepared, poses).valid);
+  poses.back() = pose("pill", 0.0, 0.2, 0.84);
+  v = validateScene(generator, prepared, poses);
+  EXPECT_FALSE(v.valid);
+  ASSERT_FALSE(v.objects[4].reasons.empty());
+  EXPECT_EQ(v.objects[4].reasons[0].kind, Violation::Kind::OutsideRegion);
+  // Only hidden objects: a missing table object is still missing.
+  poses.erase(poses.begin() + 3);
+  v = validateScene(generator, prepared, poses);
+  EXPECT_FALSE(v.objects[3].valid);
+  EXPECT_EQ(v.objects[3].reasons[0].kind, Violation::Kind::Missing);
+}
+
 TEST_F(SceneValidatorTest, BadPoses) {
   std::vector<GivenPose> poses = scene();
   poses[2].position.x() = std::numeric_limits<double>::quiet_NaN();

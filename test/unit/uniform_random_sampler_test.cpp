@@ -13,6 +13,7 @@
 #include "placement_samplers/collision/radius_checker.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "placement_samplers/text.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {
@@ -354,6 +355,28 @@ TEST(UniformRandomSampler, FailureReportsObjectSamplerAttemptsAndBlocker) {
             "could not place object 'ball' with sampler 'TableSampler' in 50 attempts: 50 of them "
             "overlapped fixture 'slab'");
   EXPECT_TRUE(scene.context.placements().empty());
+}
+
+TEST(UniformRandomSampler, FailureAfterOneAttemptSaysAttemptInTheSingular) {
+  const ObjectPtr slab = makeBox("slab_geometry", Eigen::Vector3d(3.0, 3.0, 0.5));
+  UniformSamplerParams p = region(-0.3, 0.3, -0.3, 0.3);
+  p.maxAttempts = 1;
+  const UniformRandomSampler sampler("S", p, {makeSphere("ball", 0.05)});
+  TestScene scene(14);
+  scene.context.addFixture("slab", slab.get(), Eigen::Vector3d::Zero(),
+                           Eigen::Quaterniond::Identity());
+  EXPECT_FALSE(sampler.sample(scene.context, Reference::byDefault(), true));
+  ASSERT_TRUE(scene.context.failure().has_value());
+  EXPECT_EQ(scene.context.failure()->message,
+            "could not place object 'ball' with sampler 'S' in 1 attempt: 1 of them overlapped "
+            "fixture 'slab'");
+}
+
+TEST(Text, CountTextUsesThePluralUnlessTheCountIsOne) {
+  EXPECT_EQ(countText(0, "fixture"), "0 fixtures");
+  EXPECT_EQ(countText(1, "fixture"), "1 fixture");
+  EXPECT_EQ(countText(2, "object"), "2 objects");
+  EXPECT_EQ(countText(18446744073709551615ull, "scene"), "18446744073709551615 scenes");
 }
 
 TEST(UniformRandomSampler, FailureNamesTheMostFrequentBlocker) {

@@ -32,7 +32,9 @@ Shape fromSolidPrimitive(const shape_msgs::SolidPrimitive& primitive, const std:
 /// @throw RequestError for unknown enum values, NaN, non-unit quaternions, bad shapes
 SampleRequest toSampleRequest(const SamplePlacements::Request& request);
 
-/// A scene message from a result.
+/// A scene message from a result: its success and message; per placement `sampled_pose` (the
+/// pose itself unless the scene settled) and the physics fields, which only simulated
+/// placements (a simulated scene, not hidden) fill, with `simulated` saying so.
 placement_samplers::Scene toSceneMsg(const SceneResult& scene);
 
 /// A fixture message: a configured object's name, or (for a request's primitive) its shape.

@@ -22,7 +22,7 @@ struct Violation {
     Overlap,           ///< overlaps @ref other under the check @ref check
     Height,            ///< its z is off the sampler's by @ref distance
     Unknown,           ///< not an object of the sampler validated against
-    Missing,           ///< an object of the sampler that was not given
+    Missing,           ///< an object of the sampler that was not given (hidden ones may be absent)
     Duplicate,         ///< given more than once (the first is validated)
     ReferenceMissing,  ///< its sampler's reference (@ref other) is not in the scene
     BadPose,           ///< a coordinate is not finite or too large, or the quaternion is zero
@@ -65,6 +65,7 @@ struct ValidationOptions {
 /// tolerance, and, when its sampler checks placements, overlapping no fixture and no object
 /// placed before it in sampling order under the request's check. Named references resolve
 /// against the fixtures and the given poses, as in sampling. Orientations are not checked.
+/// Objects the configuration hides (`hide`) may be left out: a real scene does not hold them.
 /// @throw RequestError when a tolerance is negative or not finite
 SceneVerdict validateScene(const SceneGenerator& generator, const PreparedRequest& request,
                            const std::vector<GivenPose>& poses,
