@@ -15,11 +15,13 @@ ScenePhysics::ScenePhysics(const SceneConfig& config, const PreparedRequest& req
     fixtures_.push_back(PhysicsFixture{f.object.get(), f.position, f.orientation});
   }
   // The clearance each object is sampled with on purpose, which moved does not count: its
-  // sampler's z_offset, plus its reference's when that is an object placed before it (a cup
-  // on a plate lifted by 1 cm drops with the plate).
+  // sampler's z_offset; placed on top, the gap between its bottom offset and its geometry (an
+  // MJCF bottom_site below the mesh) and, on a named reference, the gap between that one's top
+  // offset and geometry; and its reference's clearance when that is an object placed before it
+  // (a cup on a plate lifted by 1 cm drops with the plate).
   request.sampler->forEachUniform(
       request.reference, request.onTop,
-      [&](const UniformRandomSampler& sampler, const Reference& reference, bool) {
+      [&](const UniformRandomSampler& sampler, const Reference& reference, bool onTop) {
         if (sampler.params().hides) {
           return;  // hidden objects are far away, out of the scene
         }
@@ -31,11 +33,16 @@ ScenePhysics::ScenePhysics(const SceneConfig& config, const PreparedRequest& req
           if (hidden || bodyIndex_.count(object.get()) != 0) {
             continue;
           }
-          double zOffset = sampler.params().zOffset;
+          double zOffset = sampler.params().zOffset + (onTop ? object->bottomGap : 0.0);
           if (reference.kind == Reference::Kind::Name) {
             for (const PhysicsBody& below : bodies_) {
               if (below.object->name == reference.name) {
-                zOffset += below.zOffset;
+                zOffset += below.zOffset + (onTop ? below.object->topGap : 0.0);
+              }
+            }
+            for (const FixtureSpec& f : request.fixtures) {
+              if (f.name == reference.name && onTop) {
+                zOffset += f.object->topGap;
               }
             }
           }
