@@ -395,6 +395,27 @@ samplers:
   }
 }
 
+// The other way round: a geometry reaching 2 cm below its bottom offset starts 2 cm in the
+// ground; that is no clearance, and MuJoCo's push up counts.
+TEST(Physics, GeometryBelowItsBottomOffsetIsNoClearance) {
+  const Sampled scene = sampleOne(R"(
+ground_z: 0.8
+objects:
+  block: {shape: box, size: [0.05, 0.05, 0.1], bottom_offset: [0, 0, -0.03]}
+samplers:
+  - name: S
+    objects: [block]
+    reference_pos: [0, 0, 0.8]
+    z_offset: 0.01
+    ensure_object_boundary_in_range: false
+)",
+                                  PhysicsMode::Check);
+  ASSERT_TRUE(scene.success) << scene.message;
+  EXPECT_NEAR(scene.placements[0].object->bottomGap, -0.02, 1e-12);
+  EXPECT_FALSE(scene.stable);
+  EXPECT_NEAR(scene.physics[0].moved, 0.02, 0.002);
+}
+
 TEST(Physics, FailedScenesAreNotSimulated) {
   const Sampled scene = sampleOne(R"(
 ground_z: 0
