@@ -27,6 +27,8 @@ PS_PACKAGES=(
   # assimp's CMake targets link libz.so: a fresh Debian 12 failed at link time without it;
   # the .npz writer's CRC-32 is zlib's too.
   zlib1g-dev
+  # test/robosuite_reference.py reads each configuration's primitive sizes.
+  python3-yaml
   # /usr/bin/time: test/npz_memory.sh measures the peak memory of a large --output run.
   time
   # MuJoCo reads MJCF objects; its CMake config needs OpenGL's and qhull's development files

@@ -10,8 +10,11 @@ nothing for a fixed angle). Every sub-sampler of scene i of seed S gets the same
 rng = numpy.random.default_rng([S, i]); the hidden objects' sampler gets
 default_rng(SeedSequence([S, i]).spawn(1)[0]). A scene fails when robosuite would raise.
 
-The samplers are built from `sample_scenes --describe` (the objects' derived radii and offsets,
-the sampler tree); the scenes are compared with `sample_scenes --seed S --first-scene N
+The samplers are built from `sample_scenes --describe` (the sampler tree, the fixtures' poses,
+the radii and offsets of objects robosuite has no class for) and, for the configuration's boxes,
+cylinders, spheres and capsules (upright or turned about z, no given offsets), from robosuite's
+own primitive objects of the configured sizes, their numbers computed here in numpy (and each
+must equal what --describe says, bit for bit); the scenes are compared with `sample_scenes --seed S --first-scene N
 --scenes K`: positions bit for bit, attempts, sampler names, success, orientations within
 1e-12 (robosuite's quaternion for objects without an init_orientation; for the others the
 library's documented convention R_axis(angle) * init, see README).
@@ -29,6 +32,7 @@ import subprocess
 import sys
 
 import numpy as np
+import yaml
 
 
 class RandomizationError(Exception):
@@ -45,6 +49,91 @@ class MujocoObjectStandIn:
         self.top_offset = np.array(values["top_offset"])
         x, y, z, w = values.get("init_orientation", [0.0, 0.0, 0.0, 1.0])
         self.init_xyzw = (x, y, z, w)
+
+
+def robosuite_numbers(kind, size):
+    """(horizontal_radius, bottom_offset, top_offset) of robosuite's BoxObject, CylinderObject,
+    BallObject or CapsuleObject (robosuite/models/objects/primitive/) of `size`: half sizes,
+    (radius, half length), (radius,), (radius, half length)."""
+    size = np.array(size)
+    if kind == "box":
+        return (np.linalg.norm(size[0:2], 2), np.array([0, 0, -1 * size[2]]),
+                np.array([0, 0, size[2]]))
+    if kind == "cylinder":
+        return size[0], np.array([0, 0, -1 * size[1]]), np.array([0, 0, size[1]])
+    if kind == "sphere":
+        return size[0], np.array([0, 0, -1 * size[0]]), np.array([0, 0, size[0]])
+    return (size[0], np.array([0, 0, -1 * (size[0] + size[1])]),
+            np.array([0, 0, (size[0] + size[1])]))
+
+
+def keeps_z_vertical(xyzw):
+    """An orientation that turns about z (or turns upside down): robosuite's numbers hold."""
+    x, y, z, w = xyzw
+    return (x, y) == (0, 0) or (z, w) == (0, 0)
+
+
+def primitive_object(name, entry, orientation=None):
+    """robosuite's primitive object for a configured one (its sizes as robosuite takes them),
+    or None when the object is not one: a mesh, composite, URDF or MJCF object, given offsets,
+    or turned so that robosuite's numbers would not bound it."""
+    if not isinstance(entry, dict) or entry.get("shape") not in ("box", "cylinder", "sphere",
+                                                                 "capsule"):
+        return None
+    if any(k in entry for k in ("horizontal_radius", "bottom_offset", "top_offset")):
+        return None
+    for q in (entry.get("init_orientation"), orientation):
+        if q is not None and not keeps_z_vertical(q):
+            return None
+    kind = entry["shape"]
+    if kind == "box":
+        size = [0.5 * float(v) for v in entry["size"]]
+    elif kind == "sphere":
+        size = [float(entry["radius"])]
+    else:
+        size = [float(entry["radius"]), 0.5 * float(entry["length"])]
+    radius, bottom, top = robosuite_numbers(kind, size)
+    x, y, z, w = entry.get("init_orientation", [0.0, 0.0, 0.0, 1.0])
+    return MujocoObjectStandIn(name, {"horizontal_radius": radius, "bottom_offset": bottom,
+                                      "top_offset": top, "init_orientation": [x, y, z, w]})
+
+
+def same_numbers(a, b):
+    return ([float(a.horizontal_radius)] + [float(v) for v in a.bottom_offset] +
+            [float(v) for v in a.top_offset]) == ([float(b.horizontal_radius)] +
+                                                  [float(v) for v in b.bottom_offset] +
+                                                  [float(v) for v in b.top_offset])
+
+
+def robosuite_objects(description, config):
+    """The objects and fixtures robosuite's samplers get: robosuite's own primitive objects for
+    the configuration's primitives (their numbers computed here, in numpy, from the sizes),
+    `--describe`'s numbers for the others. Also every primitive whose described numbers are not
+    robosuite's."""
+    configured = config.get("objects") or {}
+    objects = {}
+    problems = []
+    for name, values in description["objects"].items():
+        described = MujocoObjectStandIn(name, values)
+        own = primitive_object(name, configured.get(name))
+        if own is not None and not same_numbers(own, described):
+            problems.append("object %s: described radius %r, bottom %r, top %r; robosuite's %r, "
+                            "%r, %r" % (name, described.horizontal_radius,
+                                        list(described.bottom_offset), list(described.top_offset),
+                                        own.horizontal_radius, list(own.bottom_offset),
+                                        list(own.top_offset)))
+        objects[name] = own or described
+    configured_fixtures = {g.get("name"): g for g in config.get("fixtures") or []}
+    fixtures = collections.OrderedDict()
+    for f in description["fixtures"]:
+        described = MujocoObjectStandIn(f["name"], f)
+        g = configured_fixtures.get(f["name"])
+        own = g and primitive_object(f["name"], configured.get(g.get("object")), f["orientation"])
+        if own is not None and not same_numbers(own, described):
+            problems.append("fixture %s: described radius %r; robosuite's %r" % (
+                f["name"], described.horizontal_radius, own.horizontal_radius))
+        fixtures[f["name"]] = (tuple(f["position"]), None, own or described)
+    return objects, fixtures, problems
 
 
 class UniformRandomSampler:
@@ -192,12 +281,8 @@ def expected_orientation_xyzw(angle, axis, obj):
     return (quat[1], quat[2], quat[3], quat[0])
 
 
-def reference_scene(description, seed, index):
-    objects = {name: MujocoObjectStandIn(name, values)
-               for name, values in description["objects"].items()}
-    fixtures = collections.OrderedDict()
-    for f in description["fixtures"]:
-        fixtures[f["name"]] = (tuple(f["position"]), None, MujocoObjectStandIn(f["name"], f))
+def reference_scene(description, objects, fixtures, seed, index):
+    fixtures = collections.OrderedDict(fixtures)
     rng = np.random.default_rng([seed, index])
     hidden_rng = np.random.default_rng(np.random.SeedSequence([seed, index]).spawn(1)[0])
     root = build(description["sampler"], objects, rng, hidden_rng)
@@ -210,8 +295,8 @@ def reference_scene(description, seed, index):
     return success, log
 
 
-def compare(description, scene):
-    success, log = reference_scene(description, scene["seed"], scene["scene"])
+def compare(description, objects, fixtures, scene):
+    success, log = reference_scene(description, objects, fixtures, scene["seed"], scene["scene"])
     where = "seed %d scene %d" % (scene["seed"], scene["scene"])
     problems = []
     if success != scene["success"]:
@@ -250,7 +335,9 @@ def main():
     description = json.loads(subprocess.run(
         [args.sample_scenes, "--config", args.config, "--describe"], check=True,
         stdout=subprocess.PIPE, universal_newlines=True).stdout)
-    problems = []
+    with open(args.config) as f:
+        config = yaml.safe_load(f) or {}
+    objects, fixtures, problems = robosuite_objects(description, config)
     failures = 0
     total = 0
     for seed, first in [(s, f) for s in args.seed for f in firsts]:
@@ -265,7 +352,7 @@ def main():
             scene = json.loads(line)
             total += 1
             failures += 0 if scene["success"] else 1
-            problems += compare(description, scene)
+            problems += compare(description, objects, fixtures, scene)
     for p in problems[:20]:
         print(p)
     print("%s: %d scenes (%d failed), %d differences from robosuite's loop" % (

@@ -24,6 +24,8 @@ ObjectModel makeObject(const std::string& name, std::vector<Shape> shapes,
     // A smaller radius than the geometry's no longer bounds it.
     object.radiusBoundsGeometry = overrides.horizontalRadius >= bounds.horizontalRadius;
   }
+  object.bottomGap = bounds.bottomZ - object.bottomOffset.z();
+  object.topGap = object.topOffset.z() - bounds.topZ;
   object.overrides = overrides;
   return object;
 }

@@ -91,6 +91,50 @@ Bounds capsuleBounds(double radius, double halfLength, const Eigen::Isometry3d& 
   return Bounds{centre.z() - zSpan, centre.z() + zSpan, horizontal};
 }
 
+/// True when @p pose keeps its z axis vertical (up or down) and its origin on the world z axis:
+/// a turn about z, possibly upside down. A box, cylinder, sphere or capsule then has the bounds
+/// it has unturned, which uprightBounds() gives exactly as robosuite's primitive objects do.
+bool keepsAxisVertical(const Eigen::Isometry3d& pose) {
+  const Eigen::Matrix3d r = pose.linear();
+  return r(0, 2) == 0.0 && r(1, 2) == 0.0 && r(2, 0) == 0.0 && r(2, 1) == 0.0 &&
+         pose.translation().x() == 0.0 && pose.translation().y() == 0.0;
+}
+
+/// robosuite's numbers for a primitive whose axis is vertical, centred at height @p z, computed
+/// as numpy computes them: bottom -size[2] / -size[1] / -size[0] / -(size[0] + size[1]) for a
+/// box / cylinder / ball / capsule, and horizontal radius np.linalg.norm(size[0:2]) for a box
+/// (sqrt of the dot product, x*x + y*y without FMA, as numpy's norm of a 1-D array is), the
+/// radius for the others. A generic path (corners turned, a scan over the rim) can end one bit
+/// off, and robosuite's boundary shrink and overlap test would then differ in the last bit.
+Bounds uprightBounds(const Shape& shape, double z) {
+  double halfHeight = 0.0;
+  double radius = 0.0;
+  switch (shape.type) {
+    case ShapeType::Box: {
+      const double hx = 0.5 * shape.size.x();
+      const double hy = 0.5 * shape.size.y();
+      halfHeight = 0.5 * shape.size.z();
+      radius = std::sqrt(hx * hx + hy * hy);
+      break;
+    }
+    case ShapeType::Cylinder:
+      halfHeight = 0.5 * shape.length;
+      radius = shape.radius;
+      break;
+    case ShapeType::Sphere:
+      halfHeight = shape.radius;
+      radius = shape.radius;
+      break;
+    case ShapeType::Capsule:
+      halfHeight = shape.radius + 0.5 * shape.length;
+      radius = shape.radius;
+      break;
+    case ShapeType::Mesh:
+      throw std::invalid_argument("uprightBounds: a mesh has no closed form");
+  }
+  return Bounds{z - halfHeight, z + halfHeight, radius};
+}
+
 Bounds meshBounds(const Mesh& mesh, const Eigen::Isometry3d& pose) {
   Bounds b{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), 0.0};
   for (const Eigen::Vector3d& v : mesh.vertices) {
@@ -184,6 +228,9 @@ Shape Shape::capsule(double radius, double length) {
 
 Bounds shapeBounds(const Shape& shape, const Eigen::Quaterniond& orientation) {
   const Eigen::Isometry3d pose = Eigen::Isometry3d(orientation) * shape.pose;
+  if (shape.type != ShapeType::Mesh && keepsAxisVertical(pose)) {
+    return uprightBounds(shape, pose.translation().z());
+  }
   switch (shape.type) {
     case ShapeType::Box:
       return boxBounds(0.5 * shape.size, pose);

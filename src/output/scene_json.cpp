@@ -42,6 +42,11 @@ void appendBounds(std::string& out, const ObjectModel& object) {
   appendVector(out, object.bottomOffset.data(), 3);
   out += ", \"top_offset\": ";
   appendVector(out, object.topOffset.data(), 3);
+  // What physics counts as clearance: the geometry ends above the bottom offset / below the top.
+  out += ", \"bottom_gap\": ";
+  appendNumber(out, object.bottomGap);
+  out += ", \"top_gap\": ";
+  appendNumber(out, object.topGap);
 }
 
 void appendSampler(std::string& out, const PlacementSampler& sampler);

@@ -1,5 +1,6 @@
 #include "sampling/scene_physics.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -7,6 +8,12 @@
 #include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
+namespace {
+
+/// How far a gap between an offset and the geometry lets an object drop [m]: none when negative.
+double drop(double gap) { return std::max(0.0, gap); }
+
+}  // namespace
 
 ScenePhysics::ScenePhysics(const SceneConfig& config, const PreparedRequest& request)
     : settings_(request.physics) {
@@ -15,11 +22,15 @@ ScenePhysics::ScenePhysics(const SceneConfig& config, const PreparedRequest& req
     fixtures_.push_back(PhysicsFixture{f.object.get(), f.position, f.orientation});
   }
   // The clearance each object is sampled with on purpose, which moved does not count: its
-  // sampler's z_offset, plus its reference's when that is an object placed before it (a cup
-  // on a plate lifted by 1 cm drops with the plate).
+  // sampler's z_offset; placed on top, the gap by which its geometry ends above its bottom
+  // offset (an MJCF bottom_site below the mesh) and, on a named reference, the gap by which that
+  // one's top offset lies above its geometry; and its reference's clearance when that is an
+  // object placed before it (a cup on a plate lifted by 1 cm drops with the plate). Gaps the
+  // other way (geometry reaching past an offset) are no clearance: those objects start
+  // overlapping, and MuJoCo's push counts.
   request.sampler->forEachUniform(
       request.reference, request.onTop,
-      [&](const UniformRandomSampler& sampler, const Reference& reference, bool) {
+      [&](const UniformRandomSampler& sampler, const Reference& reference, bool onTop) {
         if (sampler.params().hides) {
           return;  // hidden objects are far away, out of the scene
         }
@@ -31,11 +42,16 @@ ScenePhysics::ScenePhysics(const SceneConfig& config, const PreparedRequest& req
           if (hidden || bodyIndex_.count(object.get()) != 0) {
             continue;
           }
-          double zOffset = sampler.params().zOffset;
+          double zOffset = sampler.params().zOffset + (onTop ? drop(object->bottomGap) : 0.0);
           if (reference.kind == Reference::Kind::Name) {
             for (const PhysicsBody& below : bodies_) {
               if (below.object->name == reference.name) {
-                zOffset += below.zOffset;
+                zOffset += below.zOffset + (onTop ? drop(below.object->topGap) : 0.0);
+              }
+            }
+            for (const FixtureSpec& f : request.fixtures) {
+              if (f.name == reference.name && onTop) {
+                zOffset += drop(f.object->topGap);
               }
             }
           }

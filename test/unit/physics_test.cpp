@@ -350,6 +350,72 @@ samplers:
   EXPECT_LT(failed, one.size());
 }
 
+// robosuite's sites need not lie on the geometry (its milk's bottom_site is 2.4 cm below the
+// mesh): test/data/mjcf/gap_object.xml's bottom_site is 2.5 cm below its mesh and its top_site
+// 1 cm above. Sampled by the sites, the carton and the lid on it land that much lower: a
+// landing, counted as clearance like z_offset, not a motion.
+TEST(Physics, SitesOffTheGeometryCountAsClearance) {
+  const std::string yaml = "ground_z: 0.8\nobjects:\n  carton: {mjcf_file: " +
+                           std::string(PLACEMENT_SAMPLERS_SOURCE_DIR) +
+                           "/test/data/mjcf/gap_object.xml}\n" + R"(
+  lid: {shape: box, size: [0.04, 0.04, 0.01]}
+samplers:
+  - name: CartonSampler
+    objects: [carton]
+    x_range: [-0.2, 0.2]
+    y_range: [-0.2, 0.2]
+    reference_pos: [0, 0, 0.8]
+    z_offset: 0.01
+  - name: LidSampler
+    objects: [lid]
+    x_range: [0, 0]
+    y_range: [0, 0]
+    ensure_object_boundary_in_range: false
+    ensure_valid_placement: false
+    sample_args: {reference: carton, on_top: true}
+)";
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const Sampled scene = sampleOne(yaml, PhysicsMode::Settle, seed);
+    ASSERT_TRUE(scene.success) << scene.message;
+    ASSERT_TRUE(scene.simulated);
+    EXPECT_TRUE(scene.stable);
+    const ObjectModel& carton = *scene.placements[0].object;
+    EXPECT_NEAR(carton.bottomGap, 0.025, 1e-6);
+    EXPECT_NEAR(carton.topGap, 0.01, 1e-6);
+    for (const char* name : {"carton", "lid"}) {
+      const PhysicsOutcome& o = outcomeOf(scene, name);
+      EXPECT_LT(o.moved, 0.001) << name;
+      EXPECT_FALSE(o.fallen) << name;
+    }
+    // Sampled with its bottom_site 1 cm above the table (z 0.895), it rests on its mesh (0.86);
+    // the lid rests on the mesh's top (0.92 + 0.005).
+    EXPECT_NEAR(outcomeOf(scene, "carton").sampledPosition.z(), 0.8 + 0.01 + 0.085, 1e-12);
+    EXPECT_NEAR(findPlacement(scene.placements, "carton")->position.z(), 0.86, 0.001);
+    EXPECT_NEAR(findPlacement(scene.placements, "lid")->position.z(), 0.925, 0.001);
+  }
+}
+
+// The other way round: a geometry reaching 2 cm below its bottom offset starts 2 cm in the
+// ground; that is no clearance, and MuJoCo's push up counts.
+TEST(Physics, GeometryBelowItsBottomOffsetIsNoClearance) {
+  const Sampled scene = sampleOne(R"(
+ground_z: 0.8
+objects:
+  block: {shape: box, size: [0.05, 0.05, 0.1], bottom_offset: [0, 0, -0.03]}
+samplers:
+  - name: S
+    objects: [block]
+    reference_pos: [0, 0, 0.8]
+    z_offset: 0.01
+    ensure_object_boundary_in_range: false
+)",
+                                  PhysicsMode::Check);
+  ASSERT_TRUE(scene.success) << scene.message;
+  EXPECT_NEAR(scene.placements[0].object->bottomGap, -0.02, 1e-12);
+  EXPECT_FALSE(scene.stable);
+  EXPECT_NEAR(scene.physics[0].moved, 0.02, 0.002);
+}
+
 TEST(Physics, FailedScenesAreNotSimulated) {
   const Sampled scene = sampleOne(R"(
 ground_z: 0

@@ -197,7 +197,8 @@ TEST(SampleScenesCli, DescribePrintsTheBuiltConfiguration) {
   ASSERT_EQ(r.lines.size(), 1u);
   const std::string& d = r.lines[0];
   EXPECT_NE(d.find("\"cube\": {\"horizontal_radius\": 0.02969848480983"), std::string::npos) << d;
-  EXPECT_NE(d.find("\"bottom_offset\": [0, 0, -0.021], \"top_offset\": [0, 0, 0.021]"),
+  EXPECT_NE(d.find("\"bottom_offset\": [0, 0, -0.021], \"top_offset\": [0, 0, 0.021], "
+                   "\"bottom_gap\": 0, \"top_gap\": 0"),
             std::string::npos);
   EXPECT_NE(d.find("\"fixtures\": [{\"name\": \"table\", \"position\": [0, 0, 0.775]"),
             std::string::npos);
@@ -210,6 +211,32 @@ TEST(SampleScenesCli, DescribePrintsTheBuiltConfiguration) {
             std::string::npos);
   EXPECT_NE(d.find("\"name\": \"HideSampler\""), std::string::npos);
   EXPECT_NE(d.find("\"hides\": true"), std::string::npos);
+}
+
+// A cylinder of radius 0.03 is robosuite's CylinderObject(size=[0.03, 0.05]): horizontal
+// radius 0.03 exactly, so the boundary shrink is robosuite's and so is every position. Scene 0
+// of seed 7 is what robosuite's sampler gives with numpy.random.default_rng([7, 0]):
+// y = 0.21449545252357077 (one bit more of radius gave 0.21449545252357072).
+TEST(SampleScenesCli, CylinderPositionsAreRobosuites) {
+  const TempConfig config("cylinder.yaml", R"(
+objects:
+  c00: {shape: cylinder, radius: 0.03, length: 0.1}
+samplers:
+  - {name: S, objects: [c00], x_range: [-0.3, 0.3], y_range: [-0.3, 0.3], reference_pos: [0.5, 0.0, 0.8]}
+)");
+  const CliRun d = run({"--config", config.path, "--describe"});
+  ASSERT_EQ(d.status, 0) << d.err;
+  EXPECT_NE(d.out.find("\"c00\": {\"horizontal_radius\": 0.03, \"bottom_offset\": [0, 0, -0.05], "
+                       "\"top_offset\": [0, 0, 0.05]"),
+            std::string::npos)
+      << d.out;
+  const CliRun r = run({"--config", config.path, "--seed", "7"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(r.lines.size(), 1u);
+  EXPECT_NE(r.lines[0].find("\"position\": [0.5675515519665202, 0.21449545252357077, "
+                            "0.8500000000000001]"),
+            std::string::npos)
+      << r.lines[0];
 }
 
 TEST(SampleScenesCli, NumbersAreTheShortestThatReadBack) {

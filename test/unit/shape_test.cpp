@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "placement_samplers/geometry/object_model.hpp"
 #include "placement_samplers/geometry/shape.hpp"
@@ -151,6 +152,67 @@ TEST(Shape, NoShapesThrows) {
   EXPECT_THROW(makeObject("empty", {}, Eigen::Quaterniond::Identity()), std::invalid_argument);
 }
 
+/// Turns that keep the z axis vertical: none, about z (several angles), upside down.
+std::vector<Eigen::Quaterniond> verticalTurns() {
+  std::vector<Eigen::Quaterniond> turns{Eigen::Quaterniond::Identity(),
+                                        Eigen::Quaterniond(0.0, 1.0, 0.0, 0.0),
+                                        Eigen::Quaterniond(0.0, 0.0, 0.0, 1.0)};
+  for (double angle : {0.3, 1.0, 2.5, -0.7, M_PI / 4.0}) {
+    turns.push_back(Eigen::Quaterniond(std::cos(angle / 2.0), 0.0, 0.0, std::sin(angle / 2.0)));
+  }
+  return turns;
+}
+
+// robosuite's primitive objects, bit for bit (robosuite/models/objects/primitive/): a cylinder
+// of radius 0.03 has horizontal radius 0.03, not 0.030000000000000002 (one bit more moves its
+// boundary shrink and every position sampled with it), upright, turned about z or upside down.
+TEST(Shape, UprightPrimitivesGiveRobosuitesNumbersExactly) {
+  for (const Eigen::Quaterniond& turn : verticalTurns()) {
+    for (double r : {0.03, 0.033, 0.0271, 0.09, 1.0 / 3.0, 7e-4}) {
+      const double half = 0.0617;
+      const Bounds cylinder = shapeBounds(Shape::cylinder(r, 2.0 * half), turn);
+      EXPECT_EQ(cylinder.horizontalRadius, r);
+      EXPECT_EQ(cylinder.bottomZ, -half);
+      EXPECT_EQ(cylinder.topZ, half);
+      const Bounds capsule = shapeBounds(Shape::capsule(r, 2.0 * half), turn);
+      EXPECT_EQ(capsule.horizontalRadius, r);
+      EXPECT_EQ(capsule.bottomZ, -(r + half));
+      EXPECT_EQ(capsule.topZ, r + half);
+      const Bounds sphere = shapeBounds(Shape::sphere(r), turn);
+      EXPECT_EQ(sphere.horizontalRadius, r);
+      EXPECT_EQ(sphere.bottomZ, -r);
+      EXPECT_EQ(sphere.topZ, r);
+    }
+  }
+}
+
+// A box: np.linalg.norm(size[0:2]) of the half sizes, which numpy computes as the square root
+// of the dot product (x*x + y*y, no FMA); a yaw must not move it by a bit.
+TEST(Shape, BoxRadiusIsNumpysNormUprightAndTurnedAboutZ) {
+  for (const Eigen::Quaterniond& turn : verticalTurns()) {
+    for (const Eigen::Vector3d& size :
+         {Eigen::Vector3d(0.042, 0.042, 0.042), Eigen::Vector3d(0.063, 0.037, 0.05),
+          Eigen::Vector3d(0.32, 0.218, 0.09), Eigen::Vector3d(0.012, 0.292, 0.423)}) {
+      const double hx = size.x() / 2.0;
+      const double hy = size.y() / 2.0;
+      const Bounds b = shapeBounds(Shape::box(size), turn);
+      EXPECT_EQ(b.horizontalRadius, std::sqrt(hx * hx + hy * hy));
+      EXPECT_EQ(b.bottomZ, -size.z() / 2.0);
+      EXPECT_EQ(b.topZ, size.z() / 2.0);
+    }
+  }
+}
+
+// A part on the object's z axis (a composite's) keeps the closed forms, at its height.
+TEST(Shape, PartOnTheAxisIsExactAtItsHeight) {
+  Shape cylinder = Shape::cylinder(0.03, 0.1);
+  cylinder.pose = Eigen::Translation3d(0.0, 0.0, 0.2) * about(0.4, Eigen::Vector3d::UnitZ());
+  const Bounds b = shapeBounds(cylinder, about(1.1, Eigen::Vector3d::UnitZ()));
+  EXPECT_EQ(b.horizontalRadius, 0.03);
+  EXPECT_EQ(b.bottomZ, 0.2 - 0.05);
+  EXPECT_EQ(b.topZ, 0.2 + 0.05);
+}
+
 TEST(Shape, TypeNames) {
   EXPECT_STREQ(shapeTypeName(ShapeType::Box), "box");
   EXPECT_STREQ(shapeTypeName(ShapeType::Cylinder), "cylinder");
@@ -178,6 +240,22 @@ TEST(ObjectModel, NormalizesInitOrientation) {
   const ObjectModel cube = makeObject("cube", {Shape::box(Eigen::Vector3d(0.1, 0.1, 0.1))}, scaled);
   EXPECT_NEAR(cube.initOrientation.norm(), 1.0, kTol);
   EXPECT_NEAR(cube.topOffset.z(), 0.05, kTol);
+}
+
+// The gaps between given offsets and the geometry: what physics counts as clearance.
+TEST(ObjectModel, GapsBetweenOffsetsAndGeometry) {
+  const Shape box = Shape::box(Eigen::Vector3d(0.1, 0.1, 0.12));
+  const ObjectModel derived = makeObject("box", {box}, Eigen::Quaterniond::Identity());
+  EXPECT_EQ(derived.bottomGap, 0.0);
+  EXPECT_EQ(derived.topGap, 0.0);
+  ObjectOverrides sites;
+  sites.hasBottomOffset = true;
+  sites.bottomOffset = Eigen::Vector3d(0.0, 0.0, -0.085);  // 2.5 cm below the box
+  sites.hasTopOffset = true;
+  sites.topOffset = Eigen::Vector3d(0.0, 0.0, 0.05);  // 1 cm inside it
+  const ObjectModel carton = makeObject("carton", {box}, Eigen::Quaterniond::Identity(), sites);
+  EXPECT_NEAR(carton.bottomGap, 0.025, kTol);
+  EXPECT_NEAR(carton.topGap, -0.01, kTol);
 }
 
 TEST(ObjectModel, OverridesWin) {

@@ -28,6 +28,13 @@ struct ObjectModel {
   Eigen::Vector3d bottomOffset = Eigen::Vector3d::Zero();  ///< [m], robosuite's bottom_offset
   Eigen::Vector3d topOffset = Eigen::Vector3d::Zero();     ///< [m], robosuite's top_offset
   double horizontalRadius = 0.0;                           ///< [m]
+  /// The collision geometry's lowest z minus bottomOffset.z() [m]: how far above the bottom
+  /// offset (an MJCF bottom_site, a given bottom_offset) the geometry ends, so how far the object
+  /// drops when placed by it; 0 for derived offsets, negative when the geometry reaches below.
+  double bottomGap = 0.0;
+  /// topOffset.z() minus the geometry's highest z [m]: how far an object placed on top of this
+  /// one (by its top offset) drops onto the geometry; 0 for derived offsets.
+  double topGap = 0.0;
   /// True when horizontalRadius bounds the geometry, so circles may skip exact checks.
   bool radiusBoundsGeometry = true;
   /// Its own density for physics [kg/m^3]; 0 = the configuration's `density`.

@@ -18,7 +18,8 @@ void appendSceneJson(std::string& out, const SceneResult& scene);
 
 /// The built configuration as one JSON object: what robosuite's samplers need to sample the
 /// same scenes (README, "robosuite semantics"). "objects": name -> horizontal_radius,
-/// bottom_offset, top_offset [m] and init_orientation [x, y, z, w], as derived or overridden;
+/// bottom_offset, top_offset [m] and init_orientation [x, y, z, w], as derived or overridden,
+/// bottom_gap and top_gap [m] (ObjectModel::bottomGap, topGap: what physics counts as clearance);
 /// "fixtures": name, position, orientation and the same values under the fixture's
 /// orientation; "hidden": the hidden objects; "sampler": the root composite as a tree of
 /// {"type": "sequential", "name", "samplers": [{"sampler", "sample_args"}]} and

@@ -23,8 +23,10 @@ struct PhysicsFixture {
 /// A free body of the simulated scene: an object the request's sampler places.
 struct PhysicsBody {
   const ObjectModel* object = nullptr;  ///< its geometry (every shape of it)
-  /// The clearance it is sampled with on purpose [m]: its sampler's z_offset (plus, for an
-  /// object stacked on a placed one, that one's); "moved" does not count it.
+  /// The clearance it is sampled with on purpose [m]: its sampler's z_offset, plus the positive
+  /// gaps between the offsets it is placed by and the geometry (ObjectModel::bottomGap, its
+  /// reference's topGap), plus, for an object stacked on a placed one, that one's clearance; it
+  /// is released that much lower, and "moved" does not count it.
   double zOffset = 0.0;
   double density = 500.0;  ///< [kg/m^3]
 };
