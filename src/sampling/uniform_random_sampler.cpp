@@ -286,7 +286,7 @@ bool UniformRandomSampler::failOutOfTime(SampleContext& context, const ObjectMod
   return fail(context, &object, attempts,
               "stopped placing object " + quoteText(object.name) + " with sampler " +
                   quoteText(name()) + " after " + std::to_string(attempts) +
-                  " attempts: the request ran out of time");
+                  " attempts: " + context.outOfTimeReason());
 }
 
 bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectModel& object,
