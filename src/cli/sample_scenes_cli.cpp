@@ -227,6 +227,14 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     if (configPath.empty()) {
       throw UsageError("--config FILE is required");
     }
+    if (!outputPath.empty() && (describe || !validatePath.empty())) {
+      throw UsageError(std::string("--output writes sampled scenes; ") +
+                       (describe ? "--describe" : "--validate") +
+                       " prints JSON to stdout instead (drop --output)");
+    }
+    if (describe && !validatePath.empty()) {
+      throw UsageError("--describe and --validate: choose one");
+    }
     if (!outputPath.empty() &&
         (outputPath.size() < 5 || outputPath.compare(outputPath.size() - 4, 4, ".npz") != 0)) {
       throw UsageError("--output: expected a file name ending in .npz, got " +
@@ -297,6 +305,11 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       std::ifstream in(validatePath);
       if (!in) {
         err << "sample_scenes: --validate " << escapeText(validatePath) << ": cannot open\n";
+        return 2;
+      }
+      std::error_code ignored;
+      if (std::filesystem::is_directory(validatePath, ignored)) {
+        err << "sample_scenes: --validate " << escapeText(validatePath) << ": is a directory\n";
         return 2;
       }
       return validateSceneLines(generator, prepared, validation, in, validatePath, out, err);

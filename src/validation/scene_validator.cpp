@@ -281,6 +281,11 @@ SceneVerdict validateScene(const SceneGenerator& generator, const PreparedReques
   if (!std::isfinite(options.regionTolerance) || options.regionTolerance < 0.0) {
     throw RequestError("region tolerance: expected a finite non-negative number of metres");
   }
+  if (poses.size() > limits::kValidatedPlacements) {
+    throw RequestError("the scene has " + std::to_string(poses.size()) +
+                       " placements, more than the limit of " +
+                       std::to_string(limits::kValidatedPlacements));
+  }
   Validator validator(generator, request, options);
   return validator.run(poses);
 }

@@ -14,6 +14,7 @@
 #include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/validation/scene_validator.hpp"
 
 namespace placement_samplers {
@@ -228,6 +229,19 @@ TEST(SceneValidatorPile, ListsAtMostTenOverlapsPerObject) {
   EXPECT_EQ(message.substr(message.find(" under")),
             " under the radius check (and possibly others: the scene's overlap search stopped "
             "after 1000 tests)");
+}
+
+TEST_F(SceneValidatorTest, PosesPerSceneBounded) {
+  std::vector<GivenPose> poses(limits::kValidatedPlacements + 1, pose("cube", 0.2, 0.2, 0.83));
+  try {
+    validate(poses);
+    ADD_FAILURE() << "no RequestError";
+  } catch (const RequestError& e) {
+    EXPECT_STREQ(e.what(), "the scene has 100001 placements, more than the limit of 100000");
+  }
+  poses.pop_back();
+  const SceneVerdict v = validate(poses);  // duplicates: one reason each, on the cube
+  EXPECT_EQ(v.objects[2].reasons.size(), limits::kValidatedPlacements - 1);
 }
 
 TEST_F(SceneValidatorTest, RequestFixtures) {

@@ -74,7 +74,8 @@ struct ValidationOptions {
 /// tolerance, and, when its sampler checks placements, overlapping no fixture and no object
 /// placed before it in sampling order under the request's check. Named references resolve
 /// against the fixtures and the given poses, as in sampling. Orientations are not checked.
-/// @throw RequestError when a tolerance is negative or not finite
+/// @throw RequestError when a tolerance is negative or not finite, or when @p poses has more
+/// than limits::kValidatedPlacements poses
 SceneVerdict validateScene(const SceneGenerator& generator, const PreparedRequest& request,
                            const std::vector<GivenPose>& poses,
                            const ValidationOptions& options = {});
