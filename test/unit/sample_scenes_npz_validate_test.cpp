@@ -255,6 +255,18 @@ TEST(SampleScenesCli, MaxSceneSeconds) {
                  "100"})
                 .out,
             plain.out);
+  // The simulation counts too: its clock is the scene's (started when the simulation starts,
+  // sampling being quick here), each scene fails on its own.
+  r = run({"--config", kDefaultConfig, "--seed", "3", "--scenes", "2", "--threads", "1",
+           "--physics", "check", "--max-scene-seconds", "1e-6"});
+  EXPECT_EQ(r.status, 1);
+  ASSERT_EQ(r.lines.size(), 2u);
+  for (const std::string& line : r.lines) {
+    EXPECT_NE(line.find("\"message\": \"not finished: the scene ran out of time (its limit is "
+                        "1e-06 s) while simulating it\""),
+              std::string::npos)
+        << line;
+  }
 }
 
 }  // namespace
