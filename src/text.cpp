@@ -1,9 +1,7 @@
 #include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
-namespace {
 
-/// Length of the valid UTF-8 sequence starting at @p i (2 to 4), or 0 when there is none.
 std::size_t utf8Sequence(std::string_view text, std::size_t i) {
   const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
   const unsigned char lead = byte(i);
@@ -36,8 +34,6 @@ std::size_t utf8Sequence(std::string_view text, std::size_t i) {
   }
   return length;
 }
-
-}  // namespace
 
 std::string escapeText(std::string_view text, std::size_t maxShown) {
   static const char kHex[] = "0123456789abcdef";

@@ -36,6 +36,10 @@ constexpr double kCoordinate = 1e6;
 /// Largest time limit of a request [s] (about 11.6 days): now + it cannot overflow a clock.
 constexpr double kRequestSeconds = 1e6;
 
+/// Poses of one scene to validate (validateScene()): more than any configuration has objects
+/// (a configuration has at most kConfigValues values, and an object takes at least three).
+constexpr std::size_t kValidatedPlacements = 100000;
+
 /// Defaults of the configurable limits of a request (SceneConfig).
 constexpr std::uint32_t kDefaultFixturesPerRequest = 1000;
 constexpr std::uint64_t kDefaultPlacementsPerRequest = 1000000;

@@ -13,6 +13,10 @@ namespace placement_samplers {
 /// so a NUL byte cannot cut a message and a terminal escape cannot reach a console.
 std::string escapeText(std::string_view text, std::size_t maxShown = 1000);
 
+/// The length of the valid UTF-8 sequence of 2 to 4 bytes that starts at byte @p i of @p text
+/// (no overlong form, no surrogate, at most U+10FFFF), or 0 when there is none there.
+std::size_t utf8Sequence(std::string_view text, std::size_t i);
+
 /// escapeText(@p text) between single quotes: 'name'.
 std::string quoteText(std::string_view text);
 

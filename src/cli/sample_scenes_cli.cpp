@@ -10,12 +10,15 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/config/config_builder.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/sampling/failure_summary.hpp"
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
@@ -32,7 +35,7 @@ constexpr const char* kUsage =
     "usage: sample_scenes --config FILE [--seed S] [--scenes K] [--first-scene N]\n"
     "                     [--sampler NAME] [--collision-check radius|fcl|radius_and_fcl]\n"
     "                     [--max-attempts N] [--threads T] [--output FILE.npz]\n"
-    "                     [--physics none|check|settle]\n"
+    "                     [--physics none|check|settle] [--max-scene-seconds S]\n"
     "       sample_scenes --config FILE --describe\n"
     "       sample_scenes --config FILE --validate SCENES.jsonl|- [--height-tolerance M]\n"
     "                     [--sampler NAME] [--collision-check MODE]\n"
@@ -46,6 +49,8 @@ constexpr const char* kUsage =
     "orientation, attempts, success, scene, seed) instead of printing them.\n"
     "--physics simulates each placed scene in MuJoCo (default: the configuration's physics):\n"
     "check adds stable, moved, turned and fallen; settle also gives the settled poses.\n"
+    "--max-scene-seconds fails a scene that takes longer than S seconds to sample and\n"
+    "simulate (default: the configuration's max_request_seconds; 0 = no limit).\n"
     "--validate reads scenes in this tool's JSON lines (- = stdin) and prints one verdict\n"
     "per scene and line: each object inside its sampler's region, at its height (within M,\n"
     "default 0.005 m) and overlapping nothing under the check; exit 0 when all are valid.\n"
@@ -71,11 +76,19 @@ std::uint64_t parseUnsigned(const std::string& flag, const std::string& text, st
   }
 }
 
-double parseMetres(const std::string& flag, const std::string& text) {
+/// A finite number >= 0 and <= @p max, in @p unit ("metres", "seconds").
+double parseAmount(const std::string& flag, const std::string& text, const char* unit, double max) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || v < 0.0) {
-    throw UsageError(flag + ": expected a non-negative number of metres, got " + quoteText(text));
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || v < 0.0 ||
+      v > max) {
+    std::ostringstream out;
+    out << flag << ": expected a non-negative number of " << unit;
+    if (max < std::numeric_limits<double>::max()) {
+      out << " (at most " << max << ")";
+    }
+    out << ", got " << quoteText(text);
+    throw UsageError(out.str());
   }
   return v;
 }
@@ -156,6 +169,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
   std::string outputPath;
   std::string validatePath;
   double heightTolerance = ValidationOptions().heightTolerance;
+  std::optional<double> maxSceneSeconds;
   try {
     for (std::size_t i = 0; i < args.size(); ++i) {
       const std::string& flag = args[i];
@@ -168,13 +182,14 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
         continue;
       }
       if (i + 1 >= args.size()) {
-        throw UsageError(
-            flag == "--config" || flag == "--seed" || flag == "--scenes" ||
-                    flag == "--first-scene" || flag == "--sampler" || flag == "--collision-check" ||
-                    flag == "--max-attempts" || flag == "--threads" || flag == "--output" ||
-                    flag == "--validate" || flag == "--height-tolerance" || flag == "--physics"
-                ? flag + ": missing value"
-                : "unknown argument " + quoteText(flag));
+        throw UsageError(flag == "--config" || flag == "--seed" || flag == "--scenes" ||
+                                 flag == "--first-scene" || flag == "--sampler" ||
+                                 flag == "--collision-check" || flag == "--max-attempts" ||
+                                 flag == "--threads" || flag == "--output" ||
+                                 flag == "--validate" || flag == "--height-tolerance" ||
+                                 flag == "--physics" || flag == "--max-scene-seconds"
+                             ? flag + ": missing value"
+                             : "unknown argument " + quoteText(flag));
       }
       const std::string& value = args[++i];
       if (flag == "--config") {
@@ -198,7 +213,9 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       } else if (flag == "--validate") {
         validatePath = value;
       } else if (flag == "--height-tolerance") {
-        heightTolerance = parseMetres(flag, value);
+        heightTolerance = parseAmount(flag, value, "metres", std::numeric_limits<double>::max());
+      } else if (flag == "--max-scene-seconds") {
+        maxSceneSeconds = parseAmount(flag, value, "seconds", limits::kRequestSeconds);
       } else if (flag == "--output") {
         outputPath = value;
       } else if (flag == "--threads") {
@@ -209,6 +226,14 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     }
     if (configPath.empty()) {
       throw UsageError("--config FILE is required");
+    }
+    if (!outputPath.empty() && (describe || !validatePath.empty())) {
+      throw UsageError(std::string("--output writes sampled scenes; ") +
+                       (describe ? "--describe" : "--validate") +
+                       " prints JSON to stdout instead (drop --output)");
+    }
+    if (describe && !validatePath.empty()) {
+      throw UsageError("--describe and --validate: choose one");
     }
     if (!outputPath.empty() &&
         (outputPath.size() < 5 || outputPath.compare(outputPath.size() - 4, 4, ".npz") != 0)) {
@@ -245,6 +270,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     SampleRequest request;
     request.sampler = sampler;
     request.maxAttempts = maxAttempts;
+    // A scene may take as long as a whole request of the node, unless the flag says otherwise.
+    request.maxSceneSeconds = maxSceneSeconds.value_or(generator.config().maxRequestSeconds);
     if (!mode.empty()) {
       request.collisionCheck = collisionModeFromName(mode);
       if (!request.collisionCheck) {
@@ -278,6 +305,11 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       std::ifstream in(validatePath);
       if (!in) {
         err << "sample_scenes: --validate " << escapeText(validatePath) << ": cannot open\n";
+        return 2;
+      }
+      std::error_code ignored;
+      if (std::filesystem::is_directory(validatePath, ignored)) {
+        err << "sample_scenes: --validate " << escapeText(validatePath) << ": is a directory\n";
         return 2;
       }
       return validateSceneLines(generator, prepared, validation, in, validatePath, out, err);

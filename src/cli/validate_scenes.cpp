@@ -1,83 +1,17 @@
 #include "cli/validate_scenes.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <charconv>
-#include <stdexcept>
+#include <new>
 
+#include "cli/scene_line_reader.hpp"
+#include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/output/scene_json.hpp"
+#include "placement_samplers/process/malloc_tuning.hpp"
 #include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 namespace {
-
-struct LineError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-template <int N>
-Eigen::Matrix<double, N, 1> readVector(const YAML::Node& node, const std::string& what) {
-  if (!node.IsSequence() || node.size() != N) {
-    throw LineError(what + ": expected a list of " + std::to_string(N) + " numbers");
-  }
-  Eigen::Matrix<double, N, 1> v;
-  for (int k = 0; k < N; ++k) {
-    try {
-      v[k] = node[k].as<double>();
-    } catch (const YAML::Exception&) {
-      throw LineError(what + ": expected a list of " + std::to_string(N) + " numbers");
-    }
-  }
-  return v;
-}
-
-/// One line of sample_scenes' output: the poses, and the scene index (or @p fallback).
-std::vector<GivenPose> readScene(const std::string& line, std::uint64_t fallback,
-                                 std::uint64_t& scene) {
-  // JSON is YAML: yaml-cpp reads the line (its doubles exactly, as strtod does).
-  YAML::Node root;
-  try {
-    root = YAML::Load(line);
-  } catch (const YAML::Exception& e) {
-    throw LineError("not JSON: " + std::string(e.what()));
-  }
-  if (!root.IsMap()) {
-    throw LineError("expected a JSON object (one scene of sample_scenes)");
-  }
-  scene = fallback;
-  if (const YAML::Node index = root["scene"]) {
-    try {
-      scene = index.as<std::uint64_t>();
-    } catch (const YAML::Exception&) {
-      throw LineError("\"scene\": expected a non-negative integer");
-    }
-  }
-  const YAML::Node placements = root["placements"];
-  if (!placements || !placements.IsSequence()) {
-    throw LineError("\"placements\": expected a list of {\"name\", \"position\", \"orientation\"}");
-  }
-  std::vector<GivenPose> poses;
-  for (std::size_t i = 0; i < placements.size(); ++i) {
-    const YAML::Node p = placements[i];
-    const std::string where = "placement " + std::to_string(i);
-    if (!p.IsMap() || !p["name"] || !p["name"].IsScalar()) {
-      throw LineError(where + ": expected an object with a \"name\"");
-    }
-    GivenPose pose;
-    pose.name = p["name"].as<std::string>();
-    // Settled scenes (--physics settle) keep the sampled poses: those are what sampling chose.
-    const bool settled = p["sampled_position"] && p["sampled_orientation"];
-    const char* position = settled ? "sampled_position" : "position";
-    const char* orientation = settled ? "sampled_orientation" : "orientation";
-    pose.position =
-        readVector<3>(p[position], where + " (" + quoteText(pose.name) + ") " + position);
-    const Eigen::Vector4d q =
-        readVector<4>(p[orientation], where + " (" + quoteText(pose.name) + ") " + orientation);
-    pose.orientation.coeffs() = q;  // x, y, z, w, as printed
-    poses.push_back(std::move(pose));
-  }
-  return poses;
-}
 
 void appendNumber(std::string& out, double v) {
   char buffer[32];
@@ -119,34 +53,51 @@ void appendVerdict(std::string& out, std::uint64_t scene, const SceneVerdict& ve
 int validateSceneLines(const SceneGenerator& generator, const PreparedRequest& request,
                        const ValidationOptions& options, std::istream& in,
                        const std::string& source, std::ostream& out, std::ostream& err) {
+  const std::string shown = source == "-" ? "<stdin>" : escapeText(source);
   bool allValid = true;
   std::uint64_t lineNumber = 0;
   std::uint64_t scenes = 0;
   std::string text;
-  for (std::string line; std::getline(in, line);) {
+  std::string line;
+  for (;;) {
     ++lineNumber;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) {
-      continue;
-    }
-    std::uint64_t scene = 0;
-    std::vector<GivenPose> poses;
     try {
-      poses = readScene(line, scenes, scene);
+      if (!readBoundedLine(in, line, kMaxSceneLineBytes)) {
+        break;
+      }
+      if (line.find_first_not_of(" \t\r") == std::string::npos) {
+        continue;
+      }
+      std::uint64_t scene = 0;
+      const std::vector<GivenPose> poses =
+          readSceneLine(line, scenes, limits::kValidatedPlacements, scene);
+      ++scenes;
+      const SceneVerdict verdict = validateScene(generator, request, poses, options);
+      allValid = allValid && verdict.valid;
+      text.clear();
+      appendVerdict(text, scene, verdict);
+      out << text;
     } catch (const LineError& e) {
       out.flush();
-      err << "sample_scenes: --validate " << escapeText(source) << ": line " << lineNumber << ": "
+      err << "sample_scenes: --validate " << shown << ": line " << lineNumber << ": "
+          << escapeText(e.what()) << "\n";
+      return 2;
+    } catch (const RequestError& e) {
+      out.flush();
+      err << "sample_scenes: --validate " << shown << ": line " << lineNumber << ": "
           << escapeText(e.what()) << "\n";
       return 2;
     }
-    ++scenes;
-    const SceneVerdict verdict = validateScene(generator, request, poses, options);
-    allValid = allValid && verdict.valid;
-    text.clear();
-    appendVerdict(text, scene, verdict);
-    out << text;
+    if (line.size() >= kTrimAfterInputBytes) {
+      // A large line's memory goes back to the kernel: a long stream keeps no peak's memory.
+      const std::size_t bytes = line.size();
+      line = std::string();
+      text = std::string();
+      trimAfterInput(bytes);
+    }
   }
   if (in.bad()) {
-    err << "sample_scenes: --validate " << escapeText(source) << ": read error\n";
+    err << "sample_scenes: --validate " << shown << ": read error\n";
     return 2;
   }
   out.flush();

@@ -217,12 +217,27 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   d.fileSize =
       d.directoryOffset + npz::centralDirectory(d.members, d.directoryOffset, d.zip64).size();
 
-  d.fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  // Non-blocking: opening a FIFO for writing waits for a reader otherwise (ENXIO instead).
+  const std::string notSeekable =
+      d.shownPath +
+      ": is a FIFO or socket: an .npz file is written at offsets, so it must be a regular file";
+  d.fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NONBLOCK, 0666);
   if (d.fd < 0) {
+    if (errno == ENXIO) {
+      throw OutputError(notSeekable);
+    }
     d.fail("cannot create", errno);
   }
   struct stat status {};
-  d.regular = ::fstat(d.fd, &status) == 0 && S_ISREG(status.st_mode);
+  const bool known = ::fstat(d.fd, &status) == 0;
+  if (known && (S_ISFIFO(status.st_mode) || S_ISSOCK(status.st_mode))) {
+    throw OutputError(notSeekable);
+  }
+  const int flags = ::fcntl(d.fd, F_GETFL);
+  if (flags != -1) {
+    ::fcntl(d.fd, F_SETFL, flags & ~O_NONBLOCK);  // a device's writes wait as usual
+  }
+  d.regular = known && S_ISREG(status.st_mode);
   // Reserve the whole file now: a full disk shows at once, not after hours of sampling.
   if (::posix_fallocate(d.fd, 0, static_cast<off_t>(d.fileSize)) == ENOSPC) {
     throw OutputError(d.shownPath + ": not enough disk space for " + std::to_string(d.fileSize) +

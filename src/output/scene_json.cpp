@@ -7,6 +7,7 @@
 
 #include "placement_samplers/sampling/sequential_composite_sampler.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -286,14 +287,28 @@ void appendJsonString(std::string& out, std::string_view text) {
   out += '"';
   // Names are plain almost always: one append when nothing needs escaping.
   const bool plain = std::all_of(text.begin(), text.end(), [](char c) {
-    return static_cast<unsigned char>(c) >= 0x20 && c != '"' && c != '\\';
+    const auto byte = static_cast<unsigned char>(c);
+    return byte >= 0x20 && byte < 0x80 && c != '"' && c != '\\';
   });
   if (plain) {
     out.append(text);
     out += '"';
     return;
   }
-  for (const char c : text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (static_cast<unsigned char>(c) >= 0x80) {
+      // Valid UTF-8 as it is; a byte that starts no valid sequence becomes U+FFFD, so that
+      // every line stays JSON whatever a name read from input holds.
+      const std::size_t n = utf8Sequence(text, i);
+      if (n > 0) {
+        out.append(text.substr(i, n));
+        i += n - 1;
+      } else {
+        out += "\xef\xbf\xbd";
+      }
+      continue;
+    }
     switch (c) {
       case '"':
         out += "\\\"";

@@ -38,4 +38,8 @@ bool trimAfterBatch(std::uint64_t placements) {
 #endif
 }
 
+bool trimAfterInput(std::size_t bytes) {
+  return bytes >= kTrimAfterInputBytes && trimAfterBatch(kTrimAfterPlacements);
+}
+
 }  // namespace placement_samplers

@@ -12,6 +12,8 @@ namespace {
 
 /// Cells per side of the largest level-0 grid: 64 x 64.
 constexpr std::size_t kMaxCells = 4096;
+/// Shape and disk tests between two readings of the clock while cells are pruned.
+constexpr std::size_t kClockPeriod = std::size_t{1} << 18;
 
 /// What decides the blocked set of one object: objects that share it share the cells.
 struct CellKey {
@@ -95,6 +97,20 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
   thread_local NearbyEntries nearby;
   CellKey previous;
   std::size_t applied = 0;
+  // Pruning cells tests each against every keep-out zone and nearby entry: many zones and
+  // objects of many sizes make it long, so it reads the clock every kClockPeriod tests. Once
+  // the time is out every cell counts as covered (they all go at once), and the scene fails.
+  std::size_t tests = 0;
+  std::size_t nextClock = kClockPeriod;
+  bool outOfTime = false;
+  const auto timeOut = [&](std::size_t cost) {
+    tests += cost;
+    if (tests >= nextClock) {
+      nextClock = tests + kClockPeriod;
+      outOfTime = outOfTime || context.expired();
+    }
+    return outOfTime;
+  };
 
   for (const Entry& entry : entries_) {
     const ObjectModel& object = *entry.object;
@@ -114,6 +130,9 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       return inside > 0.0 && (c + offset - e.position.head<2>()).squaredNorm() < inside * inside;
     };
     const auto covered = [&](const Eigen::Vector2d& c, double h) {
+      if (timeOut(1 + params_.keepOut.size())) {
+        return true;
+      }
       if (shapeDepth(region, c) + h < margin) {
         return true;
       }
@@ -161,11 +180,15 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
         const PlacedEntry& e = context.entries()[i];
         if (blocks(e)) {
           nearby.add(i, e.position.head<2>() - offset);
-          cells.dropIf([&](const Eigen::Vector2d& c, double h) { return disk(e, c, h); });
+          cells.dropIf(
+              [&](const Eigen::Vector2d& c, double h) { return timeOut(1) || disk(e, c, h); });
         }
       }
     }
     applied = context.entries().size();
+    if (outOfTime) {
+      return failOutOfTime(context, object, 0);
+    }
 
     std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
     std::uint32_t outside = 0;
@@ -208,6 +231,9 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       }
       if (blocked) {
         cells.refine(level, index, covered);
+        if (outOfTime) {
+          return failOutOfTime(context, object, attempt);
+        }
         continue;
       }
       if (!orientFirst) {

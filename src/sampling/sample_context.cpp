@@ -1,6 +1,7 @@
 #include "placement_samplers/sampling/sample_context.hpp"
 
 #include <algorithm>
+#include <sstream>
 
 namespace placement_samplers {
 
@@ -39,6 +40,45 @@ const PlacedEntry* SampleContext::find(const std::string& name) const {
     }
   }
   return nullptr;
+}
+
+void SampleContext::setSceneSeconds(double seconds) {
+  sceneSeconds_ = seconds;
+  sceneLimit_ = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(seconds));
+  sceneStarted_ = false;
+}
+
+std::optional<std::chrono::steady_clock::time_point> SampleContext::sceneDeadline() {
+  if (!(sceneSeconds_ > 0.0)) {
+    return deadline_;
+  }
+  if (!sceneStarted_) {
+    sceneEnd_ = std::chrono::steady_clock::now() + sceneLimit_;
+    sceneStarted_ = true;
+  }
+  return deadline_ ? std::min(*deadline_, sceneEnd_) : sceneEnd_;
+}
+
+bool SampleContext::expired() {
+  if (!(sceneSeconds_ > 0.0)) {
+    return requestExpired();
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (!sceneStarted_) {
+    sceneEnd_ = now + sceneLimit_;
+    sceneStarted_ = true;
+  }
+  return now > sceneEnd_ || (deadline_ && now > *deadline_);
+}
+
+std::string SampleContext::outOfTimeReason() const {
+  if (requestExpired() || !(sceneSeconds_ > 0.0)) {
+    return "the request ran out of time";
+  }
+  std::ostringstream out;
+  out << "the scene ran out of time (its limit is " << sceneSeconds_ << " s)";
+  return out.str();
 }
 
 std::vector<std::uint32_t>& SampleContext::blockerCounts() {

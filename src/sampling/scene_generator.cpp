@@ -82,6 +82,14 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
     throw RequestError(out.str());
   }
   prepared.maxSeconds = request.maxSeconds;
+  if (!std::isfinite(request.maxSceneSeconds) || request.maxSceneSeconds < 0.0 ||
+      request.maxSceneSeconds > limits::kRequestSeconds) {
+    std::ostringstream out;
+    out << "the time limit of a scene must be a number of seconds in [0, "
+        << limits::kRequestSeconds << "], got " << request.maxSceneSeconds;
+    throw RequestError(out.str());
+  }
+  prepared.maxSceneSeconds = request.maxSceneSeconds;
   if (request.maxSeconds > 0.0) {
     prepared.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                     std::chrono::duration<double>(request.maxSeconds));

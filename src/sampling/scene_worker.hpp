@@ -32,8 +32,10 @@ class SceneGenerator::Worker {
 
   void setDeadline(std::optional<std::chrono::steady_clock::time_point> deadline) {
     context_.setDeadline(deadline);
+    context_.setSceneSeconds(request_.maxSceneSeconds);
   }
-  bool expired() const { return context_.expired(); }
+  /// The request's deadline (a scene's own limit fails that scene only).
+  bool expired() const { return context_.requestExpired(); }
 
   /// Scene @p index of request seed @p seed (numpy's default_rng([seed, index])) into
   /// @p result, whose buffers are reused.
@@ -82,7 +84,11 @@ class SceneGenerator::Worker {
       return;
     }
     for (std::uint32_t draws = 1; result.success; ++draws) {
-      const PhysicsStatus status = physics_->run(result, request_.deadline);
+      const PhysicsStatus status = physics_->run(result, context_.sceneDeadline());
+      if (status == PhysicsStatus::TimedOut && result.message.rfind("not finished:", 0) == 0 &&
+          !expired()) {
+        result.message = "not finished: " + context_.outOfTimeReason() + " while simulating it";
+      }
       if (status == PhysicsStatus::Stable || status == PhysicsStatus::TimedOut ||
           !request_.physics.retry) {
         return;

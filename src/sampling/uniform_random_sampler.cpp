@@ -296,8 +296,8 @@ bool UniformRandomSampler::failOutOfTime(SampleContext& context, const ObjectMod
                                          std::uint32_t attempts) const {
   return fail(context, &object, attempts,
               "stopped placing object " + quoteText(object.name) + " with sampler " +
-                  quoteText(name()) + " after " + countText(attempts, "attempt") +
-                  ": the request ran out of time");
+                  quoteText(name()) + " after " + countText(attempts, "attempt") + ": " +
+                  context.outOfTimeReason());
 }
 
 bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectModel& object,

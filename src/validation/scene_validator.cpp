@@ -4,6 +4,7 @@
 #include <memory>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/errors.hpp"
@@ -31,8 +32,8 @@ class Validator {
       : request_(request),
         options_(options),
         checker_(makeCollisionChecker(request.collisionCheck, generator.config().collisionMargin)),
-        pairChecker_(
-            makeCollisionChecker(request.collisionCheck, generator.config().collisionMargin)),
+        margin_(generator.config().collisionMargin),
+        pairChecker_(makeCollisionChecker(request.collisionCheck, margin_)),
         context_(engine_, *checker_) {}
 
   SceneVerdict run(const std::vector<GivenPose>& poses) {
@@ -151,37 +152,99 @@ class Validator {
                 metres(off));
       }
     }
-    if (params.ensureValidPlacement &&
-        context_.firstCollision(candidate) != CollisionChecker::kNone) {
-      overlaps(verdict, candidate, object.name, s);
+    if (params.ensureValidPlacement) {
+      const std::ptrdiff_t hit = context_.firstCollision(candidate);
+      if (hit != CollisionChecker::kNone) {
+        overlaps(verdict, candidate, object.name, s, hit);
+      }
     }
     context_.addPlacement(s, candidate, 1, params.hides);
   }
 
-  /// Every fixture and earlier object that @p candidate overlaps, one test each.
+  /// The fixtures and earlier objects that @p candidate overlaps (@p hit is one of them, the
+  /// scene checker's), one pair test each: the first options_.maxOverlapsListed as reasons,
+  /// the number of the others in the last reason's message (a pile of n objects would
+  /// otherwise give n^2 / 2 reasons). The scene's pair tests stop at options_.maxOverlapTests.
   void overlaps(ObjectVerdict& verdict, const Candidate& candidate, const std::string& name,
-                const std::string& sampler) {
+                const std::string& sampler, std::ptrdiff_t hit) {
     const char* mode = collisionModeName(request_.collisionCheck);
-    std::vector<PlacedEntry> one(1);
-    for (const PlacedEntry& entry : context_.entries()) {
-      one[0] = entry;
-      pairChecker_->clear();
-      pairChecker_->added(one, 0);
-      if (pairChecker_->firstCollision(one, candidate) == CollisionChecker::kNone) {
-        continue;
-      }
+    const auto list = [&](const PlacedEntry& entry) {
       add(verdict, Violation::Kind::Overlap, sampler, std::string(entry.name), 0.0,
           "object " + quoteText(name) + " overlaps " + (entry.fixture ? "fixture " : "object ") +
               quoteText(entry.name) + " under the " + mode + " check");
       verdict.reasons.back().check = mode;
+    };
+    const std::vector<PlacedEntry>& entries = context_.entries();
+    std::vector<PlacedEntry> one(1);
+    std::size_t listed = 0;
+    std::size_t more = 0;
+    bool cut = false;
+    for (const PlacedEntry& entry : entries) {
+      if (tests_ >= options_.maxOverlapTests) {
+        cut = true;
+        break;
+      }
+      ++tests_;
+      if (!pairCollides(entry, candidate, one)) {
+        continue;
+      }
+      if (listed == options_.maxOverlapsListed) {
+        ++more;
+        continue;
+      }
+      ++listed;
+      list(entry);
     }
+    if (cut && listed == 0 && options_.maxOverlapsListed > 0) {
+      list(entries[static_cast<std::size_t>(hit)]);  // not reached by the search
+      ++listed;
+    }
+    const std::string stopped = "the scene's overlap search stopped after " +
+                                std::to_string(options_.maxOverlapTests) + " tests";
+    const std::string count = std::to_string(more);
+    const char* kinds = more == 1 ? " fixture or object" : " fixtures and objects";
+    if (listed > 0 && (more > 0 || cut)) {
+      std::string note = more > 0 ? count + " more" + kinds + ", not listed" : "";
+      if (cut) {
+        note += std::string(more > 0 ? "; " : "") + "possibly others: " + stopped;
+      }
+      verdict.reasons.back().message += " (and " + note + ")";
+    } else if (listed == 0 && (more > 0 || cut)) {
+      add(verdict, Violation::Kind::Overlap, sampler, "", 0.0,
+          "object " + quoteText(name) + " overlaps " +
+              (more == 0 ? std::string("fixtures or objects")
+                         : (cut ? "at least " : "") + count + kinds) +
+              " under the " + mode + " check (not listed" + (cut ? "; " + stopped : "") + ")");
+      verdict.reasons.back().check = mode;
+    }
+  }
+
+  /// One pair test: @p entry alone against @p candidate. A checker keeps what it learnt of
+  /// each object (FCL geometry) and visits it all when cleared, so a fresh one is taken every
+  /// kPairObjects objects: a pair test then costs the same in a scene of any size.
+  bool pairCollides(const PlacedEntry& entry, const Candidate& candidate,
+                    std::vector<PlacedEntry>& one) {
+    constexpr std::size_t kPairObjects = 64;
+    pairObjects_.insert(entry.object);
+    pairObjects_.insert(candidate.object);
+    if (pairObjects_.size() > kPairObjects) {
+      pairChecker_ = makeCollisionChecker(request_.collisionCheck, margin_);
+      pairObjects_ = {entry.object, candidate.object};
+    }
+    one[0] = entry;
+    pairChecker_->clear();
+    pairChecker_->added(one, 0);
+    return pairChecker_->firstCollision(one, candidate) != CollisionChecker::kNone;
   }
 
   const PreparedRequest& request_;
   ValidationOptions options_;
   Engine engine_;  // SampleContext wants one; validation draws nothing
   std::unique_ptr<CollisionChecker> checker_;
+  double margin_;
   std::unique_ptr<CollisionChecker> pairChecker_;
+  std::unordered_set<const ObjectModel*> pairObjects_;  ///< what pairChecker_ has seen
+  std::size_t tests_ = 0;                               ///< pair tests of the scene so far
   SampleContext context_;
   std::unordered_map<std::string, std::size_t> slots_;
   std::unordered_map<std::string, const GivenPose*> given_;
@@ -222,6 +285,11 @@ SceneVerdict validateScene(const SceneGenerator& generator, const PreparedReques
   }
   if (!std::isfinite(options.regionTolerance) || options.regionTolerance < 0.0) {
     throw RequestError("region tolerance: expected a finite non-negative number of metres");
+  }
+  if (poses.size() > limits::kValidatedPlacements) {
+    throw RequestError("the scene has " + std::to_string(poses.size()) +
+                       " placements, more than the limit of " +
+                       std::to_string(limits::kValidatedPlacements));
   }
   Validator validator(generator, request, options);
   return validator.run(poses);

@@ -1,6 +1,7 @@
 // Strategy dense: past the random-packing limit, every returned scene still passes the check.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,56 @@ TEST(Dense, FailsWhenTheLatticeIsFull) {
   EXPECT_NE(out[0].message.find("with sampler 'S': strategy dense ran out of lattice sites ("),
             std::string::npos)
       << out[0].message;
+}
+
+/// @p n spheres of radius @p r in a regular @p vertices-gon of circumradius @p size.
+std::string spheresInPolygon(int n, double r, int vertices, double size) {
+  std::string yaml = "objects:\n";
+  std::string names;
+  for (int i = 0; i < n; ++i) {
+    yaml += "  s" + std::to_string(i) + ": {shape: sphere, radius: " + std::to_string(r) + "}\n";
+    names += (i ? ", s" : "s") + std::to_string(i);
+  }
+  std::string corners;
+  for (int k = 0; k < vertices; ++k) {
+    const double a = 2.0 * M_PI * k / vertices;
+    corners += (k ? ", [" : "[") + std::to_string(size * std::cos(a)) + ", " +
+               std::to_string(size * std::sin(a)) + "]";
+  }
+  return yaml + "samplers:\n  - {name: S, strategy: dense, objects: [" + names +
+         "], region: {shape: polygon, vertices: [" + corners + "]}}\n";
+}
+
+/// A lattice whose tests would take minutes fails at once, before any draw.
+TEST(Dense, BoundsTheWorkOfALattice) {
+  const SceneGenerator generator(test::buildFromYaml(spheresInPolygon(10, 0.00025, 1000, 0.35)));
+  const SceneResult scene = generator.sampleScene(generator.prepare(SampleRequest()), 1, 0);
+  EXPECT_FALSE(scene.success);
+  EXPECT_EQ(scene.message,
+            "sampler 'S': strategy dense: about 2269675 lattice sites in the region's bounding "
+            "box, each tested against 1000 region and keep-out edges, exceed the limit of "
+            "250000000 tests a scene (larger objects, a smaller region or fewer vertices)");
+  EXPECT_TRUE(scene.placements.empty());
+}
+
+/// Laying out the sites reads the clock (the first reading starts a scene's clock, the second
+/// one stops it); the same lattice without a limit places every object.
+TEST(Dense, StopsLayingOutSitesWhenTimeRunsOut) {
+  const SceneGenerator generator(test::buildFromYaml(spheresInPolygon(5, 0.0005, 100, 0.1)));
+  SampleRequest request;
+  EXPECT_TRUE(generator.sampleScene(generator.prepare(request), 1, 0).success);
+  request.maxSceneSeconds = 1e-9;
+  SceneResult scene = generator.sampleScene(generator.prepare(request), 1, 0);
+  EXPECT_FALSE(scene.success);
+  EXPECT_EQ(scene.message,
+            "sampler 'S': strategy dense: stopped laying out the lattice sites: the scene ran "
+            "out of time (its limit is 1e-09 s)");
+  request.maxSceneSeconds = 0.0;
+  request.maxSeconds = 1e-9;
+  scene = generator.sampleScene(generator.prepare(request), 1, 0);
+  EXPECT_EQ(scene.message,
+            "sampler 'S': strategy dense: stopped laying out the lattice sites: the request ran "
+            "out of time");
 }
 
 }  // namespace

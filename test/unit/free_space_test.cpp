@@ -193,5 +193,36 @@ TEST(FreeSpace, UnknownStrategyIsAnError) {
             "samplers[0].strategy: expected rejection, free_space or dense, got 'greedy'");
 }
 
+/// Pruning the cells of many keep-out zones for objects of many sizes reads the clock: with a
+/// limit that has passed, the scene fails instead of pruning on.
+TEST(FreeSpace, StopsPruningWhenTimeRunsOut) {
+  std::string yaml = "objects:\n";
+  std::string names;
+  for (int i = 0; i < 4; ++i) {
+    yaml += "  o" + std::to_string(i) + ": {shape: sphere, radius: 0.00" + std::to_string(i + 1) +
+            "}\n";
+    names += (i ? ", o" : "o") + std::to_string(i);
+  }
+  yaml += "samplers:\n  - {name: S, strategy: free_space, objects: [" + names +
+          "], x_range: [-1, 1], y_range: [-1, 1], keep_out: [";
+  for (int k = 0; k < 200; ++k) {
+    yaml += (k ? ", " : "") + std::string("{shape: disk, centre: [") +
+            std::to_string(-0.95 + 0.1 * (k % 20)) + ", " + std::to_string(-0.95 + 0.1 * (k / 20)) +
+            "], radius: 0.01}";
+  }
+  yaml += "]}\n";
+  const SceneGenerator generator(test::buildFromYaml(yaml));
+  SampleRequest request;
+  EXPECT_TRUE(generator.sampleScene(generator.prepare(request), 1, 0).success);
+  request.maxSceneSeconds = 1e-9;
+  const SceneResult scene = generator.sampleScene(generator.prepare(request), 1, 0);
+  EXPECT_FALSE(scene.success);
+  EXPECT_EQ(scene.message.rfind("stopped placing object 'o", 0), 0u) << scene.message;
+  EXPECT_NE(scene.message.find("with sampler 'S' after "), std::string::npos) << scene.message;
+  EXPECT_NE(scene.message.find(" attempts: the scene ran out of time (its limit is 1e-09 s)"),
+            std::string::npos)
+      << scene.message;
+}
+
 }  // namespace
 }  // namespace placement_samplers

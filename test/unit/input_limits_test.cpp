@@ -840,6 +840,8 @@ TEST(InputLimits, FreedMemoryIsReturnedAfterLargeBatches) {
   EXPECT_GT(peak - before, 256 * 1024) << "the batch must be larger than what may be kept";
   EXPECT_LE(after - before, static_cast<long>(kKeptFreeBytes >> 10));
   EXPECT_FALSE(trimAfterBatch(kTrimAfterPlacements - 1));
+  EXPECT_FALSE(trimAfterInput(kTrimAfterInputBytes - 1));
+  EXPECT_TRUE(trimAfterInput(kTrimAfterInputBytes));
 #endif
 }
 

@@ -2,6 +2,8 @@
 // codes and error messages.
 
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -153,6 +155,118 @@ TEST(SampleScenesValidate, BadInput) {
   EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
             "sample_scenes: --height-tolerance: expected a non-negative number of metres, got "
             "'-1'");
+}
+
+TEST(SampleScenesValidate, MissingFieldNamesTheLine) {
+  const TempFile scenes("missing.jsonl",
+                        "\n{\"scene\": 0, \"placements\": [{\"name\": \"cube\"}]}\n");
+  const CliRun r = run({"--config", kDefaultConfig, "--validate", scenes.path});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "sample_scenes: --validate " + scenes.path +
+                       ": line 2: placement 0 ('cube'): missing field \"position\"\n");
+}
+
+TEST(SampleScenesValidate, PlacementsPerSceneBounded) {
+  std::string good = "{\"placements\": [";
+  for (int i = 0; i <= 100000; ++i) {
+    good += std::string(i ? ", " : "") +
+            "{\"name\": \"c\", \"position\": [0, 0, 0], \"orientation\": [0, 0, 0, 1]}";
+  }
+  const TempFile tooMany("too_many.jsonl", good + "]}\n");
+  const CliRun many = run({"--config", kDefaultConfig, "--validate", tooMany.path});
+  EXPECT_EQ(many.status, 2);
+  EXPECT_EQ(many.err, "sample_scenes: --validate " + tooMany.path +
+                          ": line 1: \"placements\": more than 100000 placements (the limit of a "
+                          "scene)\n");
+}
+
+/// A name that is not valid UTF-8 (from input) still gives a JSON line: U+FFFD in its place.
+TEST(SampleScenesValidate, InvalidUtf8NameGivesJson) {
+  const TempFile scenes("utf8.jsonl",
+                        "{\"placements\": [{\"name\": \"b\xff\xc3\", \"position\": [0, 0, 0], "
+                        "\"orientation\": [0, 0, 0, 1]}]}\n");
+  const CliRun r = run({"--config", kDefaultConfig, "--validate", scenes.path});
+  EXPECT_EQ(r.status, 1) << r.err;
+  ASSERT_EQ(r.lines.size(), 1u);
+  EXPECT_EQ(r.lines[0].find('\xff'), std::string::npos);
+  EXPECT_NE(r.lines[0].find("{\"name\": \"b\xef\xbf\xbd\xef\xbf\xbd\", \"valid\": false, "
+                            "\"reasons\": [{\"kind\": \"unknown_object\""),
+            std::string::npos)
+      << r.lines[0];
+  // The message shows the bytes escaped, as every message does.
+  EXPECT_NE(r.lines[0].find("\"message\": \"object 'b\\\\xff\\\\xc3' is not placed by sampler"),
+            std::string::npos)
+      << r.lines[0];
+}
+
+TEST(SampleScenesValidate, OutputIsRefused) {
+  CliRun r = run({"--config", kDefaultConfig, "--validate", "-", "--output", "x.npz"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
+            "sample_scenes: --output writes sampled scenes; --validate prints JSON to stdout "
+            "instead (drop --output)");
+  r = run({"--config", kDefaultConfig, "--describe", "--output", "x.npz"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
+            "sample_scenes: --output writes sampled scenes; --describe prints JSON to stdout "
+            "instead (drop --output)");
+  r = run({"--config", kDefaultConfig, "--describe", "--validate", "-"});
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
+            "sample_scenes: --describe and --validate: choose one");
+  r = run({"--config", kDefaultConfig, "--validate", testing::TempDir()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("sample_scenes: --validate ", 0), 0u);
+  EXPECT_EQ(r.err.substr(r.err.size() - 17), ": is a directory\n");
+}
+
+/// A FIFO as the .npz file: refused at once, whether a reader waits on it or not (opening it
+/// for writing would wait for one).
+TEST(SampleScenesNpz, FifoIsRefused) {
+  const TempFile fifo("fifo.npz");
+  ASSERT_EQ(::mkfifo(fifo.path.c_str(), 0600), 0);
+  const CliRun r = run({"--config", kDefaultConfig, "--output", fifo.path});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "sample_scenes: " + fifo.path +
+                       ": is a FIFO or socket: an .npz file is written at offsets, so it must be "
+                       "a regular file\n");
+  const int reader = ::open(fifo.path.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(reader, 0);
+  EXPECT_EQ(run({"--config", kDefaultConfig, "--output", fifo.path}).err, r.err);
+  ::close(reader);
+}
+
+TEST(SampleScenesCli, MaxSceneSeconds) {
+  CliRun r = run({"--config", kDefaultConfig, "--max-scene-seconds", "-1"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
+            "sample_scenes: --max-scene-seconds: expected a non-negative number of seconds (at "
+            "most 1e+06), got '-1'");
+  r = run({"--config", kDefaultConfig, "--max-scene-seconds", "2e6"});
+  EXPECT_EQ(r.status, 2);
+  r = run({"--config", kDefaultConfig, "--max-scene-seconds"});
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n')), "sample_scenes: --max-scene-seconds: missing value");
+  // 0 = no limit; a limit changes nothing for scenes that end in time.
+  const CliRun plain = run({"--config", kDefaultConfig, "--seed", "3", "--scenes", "5"});
+  EXPECT_EQ(
+      run({"--config", kDefaultConfig, "--seed", "3", "--scenes", "5", "--max-scene-seconds", "0"})
+          .out,
+      plain.out);
+  EXPECT_EQ(run({"--config", kDefaultConfig, "--seed", "3", "--scenes", "5", "--max-scene-seconds",
+                 "100"})
+                .out,
+            plain.out);
+  // The simulation counts too: its clock is the scene's (started when the simulation starts,
+  // sampling being quick here), each scene fails on its own.
+  r = run({"--config", kDefaultConfig, "--seed", "3", "--scenes", "2", "--threads", "1",
+           "--physics", "check", "--max-scene-seconds", "1e-6"});
+  EXPECT_EQ(r.status, 1);
+  ASSERT_EQ(r.lines.size(), 2u);
+  for (const std::string& line : r.lines) {
+    EXPECT_NE(line.find("\"message\": \"not finished: the scene ran out of time (its limit is "
+                        "1e-06 s) while simulating it\""),
+              std::string::npos)
+        << line;
+  }
 }
 
 }  // namespace

@@ -381,6 +381,34 @@ TEST(SceneGenerator, TimeLimit) {
   }
 }
 
+TEST(SceneGenerator, SceneTimeLimit) {
+  const SceneGenerator generator = makeGenerator();
+  SampleRequest request;
+  for (const double bad : {-1.0, double(NAN), 2e6}) {
+    request.maxSceneSeconds = bad;
+    EXPECT_EQ(
+        requestError(generator, request)
+            .rfind("the time limit of a scene must be a number of seconds in [0, 1e+06], got ", 0),
+        0u);
+  }
+  // A blocked scene and a huge attempt limit: each scene stops on its own (its clock starts at
+  // its first time check, after 1023 attempts, and stops it at the second), and the next one
+  // is still sampled.
+  request.maxSceneSeconds = 1e-9;
+  request.maxAttempts = 100000000;
+  request.fixtures.push_back(
+      boxFixture("block", Eigen::Vector3d(2.0, 2.0, 0.5), Eigen::Vector3d(0.0, 0.0, 1.0)));
+  const std::vector<SceneResult> scenes =
+      generator.sampleScenes(generator.prepare(request), 1, 3, 1);
+  ASSERT_EQ(scenes.size(), 3u);
+  for (const SceneResult& scene : scenes) {
+    EXPECT_FALSE(scene.success);
+    EXPECT_EQ(scene.message,
+              "stopped placing object 'plate' with sampler 'PlateSampler' after 2047 attempts: "
+              "the scene ran out of time (its limit is 1e-09 s)");
+  }
+}
+
 TEST(SceneGenerator, SceneIndependentOfCountAndThreads) {
   const SceneGenerator generator = makeGenerator();
   const PreparedRequest prepared = generator.prepare(SampleRequest());

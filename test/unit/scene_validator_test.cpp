@@ -14,6 +14,7 @@
 #include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/errors.hpp"
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/validation/scene_validator.hpp"
 
 namespace placement_samplers {
@@ -157,6 +158,90 @@ TEST_F(SceneValidatorTest, OverlapsUnderEachCheck) {
   v = validate(poses, fcl);
   EXPECT_EQ(reasons(v, "ball").back(),
             "overlap: object 'ball' overlaps object 'cube' under the fcl check");
+}
+
+TEST_F(SceneValidatorTest, OverlapsListedPerObjectAtMost) {
+  std::vector<GivenPose> poses = scene();
+  poses[3].position = Eigen::Vector3d(0.0, 0.1, 0.84);  // the ball overlaps the plate and cube
+  poses[2].position = Eigen::Vector3d(0.02, 0.1, 0.83);
+  ValidationOptions one;
+  one.maxOverlapsListed = 1;
+  SceneVerdict v = validate(poses, {}, one);
+  EXPECT_EQ(reasons(v, "ball"),
+            Reasons{"overlap: object 'ball' overlaps object 'plate' under the radius check (and 1 "
+                    "more fixture or object, not listed)"});
+  EXPECT_EQ(v.objects[3].reasons[0].other, "plate");
+  ValidationOptions none;
+  none.maxOverlapsListed = 0;
+  v = validate(poses, {}, none);
+  EXPECT_EQ(reasons(v, "ball"),
+            Reasons{"overlap: object 'ball' overlaps 2 fixtures and objects under the radius check "
+                    "(not listed)"});
+  EXPECT_EQ(v.objects[3].reasons[0].other, "");
+  EXPECT_EQ(v.objects[3].reasons[0].check, "radius");
+}
+
+/// 300 objects at one point: each lists at most 10 of the objects before it (45,000 reasons
+/// otherwise), the last one says how many it did not list.
+TEST(SceneValidatorPile, ListsAtMostTenOverlapsPerObject) {
+  std::string yaml = "objects:\n";
+  std::string names;
+  std::vector<GivenPose> poses;
+  for (int i = 0; i < 300; ++i) {
+    yaml += "  o" + std::to_string(i) + ": {shape: sphere, radius: 0.01}\n";
+    names += (i ? ", o" : "o") + std::to_string(i);
+    GivenPose p;
+    p.name = "o" + std::to_string(i);
+    p.position = Eigen::Vector3d(0.0, 0.0, 0.01);
+    poses.push_back(p);
+  }
+  yaml +=
+      "samplers:\n  - {name: S, objects: [" + names + "], x_range: [-1, 1], y_range: [-1, 1]}\n";
+  const SceneGenerator generator(buildSceneConfig(parseYaml(yaml, "test")));
+  const SceneVerdict v = validateScene(generator, generator.prepare(SampleRequest()), poses);
+  ASSERT_EQ(v.objects.size(), 300u);
+  EXPECT_TRUE(v.objects[0].valid);
+  ASSERT_EQ(v.objects[5].reasons.size(), 5u);
+  EXPECT_EQ(v.objects[5].reasons[4].message,
+            "object 'o5' overlaps object 'o4' under the radius check");
+  const std::vector<Violation>& last = v.objects[299].reasons;
+  ASSERT_EQ(last.size(), 10u);
+  EXPECT_EQ(last[0].other, "o0");
+  EXPECT_EQ(last[9].other, "o9");
+  EXPECT_EQ(last[9].message,
+            "object 'o299' overlaps object 'o9' under the radius check (and 289 more fixtures "
+            "and objects, not listed)");
+  // The scene's pair tests run out at object 45 (1 + 2 + ... + 44 = 990 of 1000 before it).
+  ValidationOptions few;
+  few.maxOverlapTests = 1000;
+  const SceneVerdict cut = validateScene(generator, generator.prepare(SampleRequest()), poses, few);
+  EXPECT_EQ(cut.objects[44].reasons.back().message,
+            "object 'o44' overlaps object 'o9' under the radius check (and 34 more fixtures and "
+            "objects, not listed)");
+  EXPECT_EQ(cut.objects[45].reasons.back().message,
+            "object 'o45' overlaps object 'o9' under the radius check (and possibly others: the "
+            "scene's overlap search stopped after 1000 tests)");
+  // Later objects list the overlap that the sampling test found.
+  ASSERT_EQ(cut.objects[299].reasons.size(), 1u);
+  EXPECT_FALSE(cut.objects[299].valid);
+  EXPECT_NE(cut.objects[299].reasons[0].other, "");
+  const std::string& message = cut.objects[299].reasons[0].message;
+  EXPECT_EQ(message.substr(message.find(" under")),
+            " under the radius check (and possibly others: the scene's overlap search stopped "
+            "after 1000 tests)");
+}
+
+TEST_F(SceneValidatorTest, PosesPerSceneBounded) {
+  std::vector<GivenPose> poses(limits::kValidatedPlacements + 1, pose("cube", 0.2, 0.2, 0.83));
+  try {
+    validate(poses);
+    ADD_FAILURE() << "no RequestError";
+  } catch (const RequestError& e) {
+    EXPECT_STREQ(e.what(), "the scene has 100001 placements, more than the limit of 100000");
+  }
+  poses.pop_back();
+  const SceneVerdict v = validate(poses);  // duplicates: one reason each, on the cube
+  EXPECT_EQ(v.objects[2].reasons.size(), limits::kValidatedPlacements - 1);
 }
 
 TEST_F(SceneValidatorTest, RequestFixtures) {

@@ -30,7 +30,8 @@ void appendSceneJson(std::string& out, const SceneResult& scene);
 /// hold "reference" (a name or [x, y, z]) and "on_top" when set.
 std::string configToJson(const SceneConfig& config);
 
-/// @p text as a JSON string literal, quotes included, appended to @p out.
+/// @p text as a JSON string literal, quotes included, appended to @p out. Bytes that are not
+/// valid UTF-8 become U+FFFD (the replacement character), so the literal is always valid JSON.
 void appendJsonString(std::string& out, std::string_view text);
 
 }  // namespace placement_samplers

@@ -39,4 +39,13 @@ constexpr std::uint64_t kTrimAfterPlacements = 250000;
 /// @return true when it trimmed (false for a small batch or without glibc)
 bool trimAfterBatch(std::uint64_t placements);
 
+/// Input of at least this many bytes is large for trimAfterInput().
+constexpr std::size_t kTrimAfterInputBytes = std::size_t{4} << 20;
+
+/// trimAfterBatch() for work measured by its input: call when what was made of @p bytes bytes
+/// of input (a line of sample_scenes --validate: its poses and verdict) has been freed; trims
+/// from kTrimAfterInputBytes up.
+/// @return true when it trimmed
+bool trimAfterInput(std::size_t bytes);
+
 }  // namespace placement_samplers

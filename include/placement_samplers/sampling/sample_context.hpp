@@ -49,11 +49,25 @@ class SampleContext {
   /// Records why the scene failed; the sampling stops.
   void fail(Failure failure) { failure_ = std::move(failure); }
 
-  /// Sampling stops with a failure once @p deadline has passed (checked every 1024 attempts).
+  /// Sampling stops with a failure once @p deadline has passed (checked every 1024 attempts,
+  /// and at a similar cost in the other loops of the strategies).
   void setDeadline(std::optional<std::chrono::steady_clock::time_point> deadline) {
     deadline_ = deadline;
   }
-  bool expired() const { return deadline_ && std::chrono::steady_clock::now() > *deadline_; }
+  /// Each scene stops with a failure once it has run for @p seconds (0 = no limit) [s]. Its
+  /// clock starts at the scene's first check of the time (within its first 1024 attempts), so
+  /// that a quick scene never reads the clock.
+  void setSceneSeconds(double seconds);
+  /// True once the request's deadline has passed.
+  bool requestExpired() const { return deadline_ && std::chrono::steady_clock::now() > *deadline_; }
+  /// True once the request's deadline or the scene's limit has passed (the first call of a
+  /// scene starts its clock).
+  bool expired();
+  /// The earlier of the request's deadline and the scene's (whose clock this starts), or none.
+  std::optional<std::chrono::steady_clock::time_point> sceneDeadline();
+  /// Why expired() is true: "the request ran out of time" or "the scene ran out of time (its
+  /// limit is N s)".
+  std::string outOfTimeReason() const;
 
   /// The scene's stream: every draw of the samplers, hidden objects excepted.
   Engine& engine() { return *engine_; }
@@ -65,6 +79,7 @@ class SampleContext {
     seed_ = seed;
     index_ = index;
     hiddenSeeded_ = false;
+    sceneStarted_ = false;
   }
   /// The hidden objects' stream (random.hpp's hiddenEngine(seed, index)), seeded on first use:
   /// hidden objects draw nothing from engine(), as robosuite's hide sampler has a generator of
@@ -95,6 +110,10 @@ class SampleContext {
   std::vector<std::uint32_t> blockerCounts_;
   std::optional<Failure> failure_;
   std::optional<std::chrono::steady_clock::time_point> deadline_;
+  double sceneSeconds_ = 0.0;
+  std::chrono::steady_clock::duration sceneLimit_{};
+  bool sceneStarted_ = false;  ///< sceneEnd_ holds this scene's end
+  std::chrono::steady_clock::time_point sceneEnd_;
 };
 
 }  // namespace placement_samplers

@@ -34,6 +34,9 @@ struct SampleRequest {
   /// Time limit of the whole request, from the start of SceneGenerator::prepare() [s];
   /// 0 = none; at most limits::kRequestSeconds.
   double maxSeconds = 0.0;
+  /// Time limit of each scene [s] (sampling and simulation, from the scene's first check of
+  /// the clock: SampleContext::setSceneSeconds); 0 = none; at most limits::kRequestSeconds.
+  double maxSceneSeconds = 0.0;
   std::optional<PhysicsMode> physics;  ///< unset = as configured
 };
 
@@ -47,6 +50,7 @@ struct PreparedRequest {
   CollisionMode collisionCheck = CollisionMode::Radius;
   std::uint32_t maxAttempts = 0;
   double maxSeconds = 0.0;
+  double maxSceneSeconds = 0.0;  ///< each scene's limit [s]; 0 = none
   /// When the request must stop: prepare()'s start + maxSeconds; unset = never.
   std::optional<std::chrono::steady_clock::time_point> deadline;
   std::vector<FixtureSpec> fixtures;  ///< configured fixtures, then the request's

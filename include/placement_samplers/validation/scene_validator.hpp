@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,14 @@ struct ValidationOptions {
   /// How far outside its region an object may be [m]: covers the rounding of sampling's
   /// x = u + reference (read back as x - reference).
   double regionTolerance = 1e-9;
+  /// Overlaps listed per object (as reasons, in the order of the fixtures and objects before
+  /// it): the message of the last one says how many more there are. 0 lists none: a single
+  /// reason without `other` then gives their number.
+  std::size_t maxOverlapsListed = 10;
+  /// Pair tests of one scene's overlap search (one per overlapping object and fixture or object
+  /// before it). Once they are used up, an overlapping object lists the overlap its sampling
+  /// test found and its message says that others were not searched.
+  std::size_t maxOverlapTests = 250000;
 };
 
 /// Whether @p poses form a scene that @p request (its sampler, fixtures, collision check) of
@@ -66,7 +75,8 @@ struct ValidationOptions {
 /// placed before it in sampling order under the request's check. Named references resolve
 /// against the fixtures and the given poses, as in sampling. Orientations are not checked.
 /// Objects the configuration hides (`hide`) may be left out: a real scene does not hold them.
-/// @throw RequestError when a tolerance is negative or not finite
+/// @throw RequestError when a tolerance is negative or not finite, or when @p poses has more
+/// than limits::kValidatedPlacements poses
 SceneVerdict validateScene(const SceneGenerator& generator, const PreparedRequest& request,
                            const std::vector<GivenPose>& poses,
                            const ValidationOptions& options = {});
