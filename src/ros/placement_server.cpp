@@ -169,10 +169,7 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     const bool gaveUp = generator->sampleSceneRangeOrGiveUp(
         prepared, seed, request.first_scene, count, threads, kGiveUpProbeScenes, scenes);
     if (placements >= kTrimAfterPlacements) {
-      // roscpp frees the answer after this callback: the publishing thread trims a little later.
-      std::lock_guard<std::mutex> lock(pendingMutex_);
-      trimPlacements_ = std::max(trimPlacements_, placements);
-      trimAt_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+      scheduleTrim(placements);
     }
 
     FailureSummary failures;
@@ -221,9 +218,22 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
   return true;
 }
 
+void PlacementServer::scheduleTrim(std::uint64_t placements) {
+  // roscpp frees the request and the answer after the callback: the publishing thread trims a
+  // little later.
+  std::lock_guard<std::mutex> lock(pendingMutex_);
+  trimPlacements_ = std::max(trimPlacements_, placements);
+  trimAt_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+}
+
 bool PlacementServer::validate(ValidatePlacements::Request& request,
                                ValidatePlacements::Response& response) {
+  lowerSamplingThreadPriority();
   ros_interface::answerValidation(*generator(), request, response);  // never throws
+  // A large request (refused or not) leaves roscpp's copy of it freed but kept by malloc.
+  if (request.placements.size() + request.fixtures.size() >= kTrimAfterValidatedPoses) {
+    scheduleTrim(kTrimAfterPlacements);
+  }
   return true;
 }
 

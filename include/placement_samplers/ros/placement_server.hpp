@@ -45,6 +45,9 @@ constexpr int kSamplingNiceness = 10;
 /// A batch whose first this many scenes all failed stops there and answers at once.
 constexpr std::uint64_t kGiveUpProbeScenes = 32;
 
+/// A validation of this many poses or more gives its memory back to the system afterwards.
+constexpr std::size_t kTrimAfterValidatedPoses = 10000;
+
 class PlacementServer {
  public:
   /// @param privateHandle the node's private namespace, where the configuration lives
@@ -89,6 +92,7 @@ class PlacementServer {
 
   std::shared_ptr<const SceneGenerator> generator() const;
   std::uint64_t nextSeed();
+  void scheduleTrim(std::uint64_t placements);
   void advertise();
   void publishLoop();
   Shown render(const ShownScene& shown) const;
