@@ -12,6 +12,10 @@ namespace {
 
 /// Cells per side of the largest level-0 grid: 64 x 64.
 constexpr std::size_t kMaxCells = 4096;
+
+/// Rejection attempts over the whole box before the cells are built: an object that needs more
+/// has little free room left, where the cells pay for themselves.
+constexpr std::uint32_t kRejectionAttempts = 512;
 /// Shape and disk tests between two readings of the clock while cells are pruned.
 constexpr std::size_t kClockPeriod = std::size_t{1} << 18;
 
@@ -81,8 +85,8 @@ class NearbyEntries {
 
 bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::Vector3d& base,
                                            bool onTop) const {
-  const RegionShape region =
-      params_.region ? *params_.region : RegionShape::rectangle(params_.xRange, params_.yRange);
+  const RegionShape plain = RegionShape::rectangle(params_.xRange, params_.yRange);
+  const RegionShape& region = params_.region ? *params_.region : plain;
   const Eigen::Vector2d offset = base.head<2>();
   Engine& engine = engineOf(context);
   const std::uint32_t limit = attemptLimit(context);
@@ -145,21 +149,82 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
              nearby.any(c, [&](std::size_t i) { return disk(context.entries()[i], c, h); });
     };
 
+    const Eigen::Vector2d lo = boundsLo_ + Eigen::Vector2d::Constant(margin);
+    const Eigen::Vector2d hi = boundsHi_ - Eigen::Vector2d::Constant(margin);
+    if (!(hi.x() > lo.x() && hi.y() > lo.y())) {
+      // A region of no area (a range the shrink leaves zero wide): robosuite's draws.
+      if (!placeOne(context, entry, base, onTop)) {
+        return false;
+      }
+      previous = CellKey();
+      continue;
+    }
+
+    // Rejections per entry for the failure message, zeroed at the first collision: most objects
+    // are placed at their first attempt.
+    std::vector<std::uint32_t>* counts = nullptr;
+    std::uint32_t outside = 0;
+    std::uint32_t collided = 0;
+    Candidate candidate;
+    candidate.object = &object;
+    candidate.position.z() = z;
+    // One attempt at @p local (sampler frame): true when it is placed.
+    // @p inBox: @p local is a draw of the box of a plain x/y-range region, which is robosuite's
+    // shrunk range itself.
+    const auto attemptAt = [&](const Eigen::Vector2d& local, std::uint32_t attempt, bool inBox) {
+      candidate.position.head<2>() = local + offset;
+      if (orientFirst) {
+        candidate.orientation = sampleOrientation(engine, object);
+      }
+      bool blocked = !inBox && shapeDepth(region, local) < margin;
+      for (std::size_t i = 0; i < params_.keepOut.size() && !blocked; ++i) {
+        const KeepOutZone& zone = params_.keepOut[i];
+        blocked = keepOutBlocks(zone, zone.world ? Eigen::Vector2d(local + offset) : local, margin);
+      }
+      outside += blocked ? 1 : 0;
+      if (!blocked && check) {
+        const std::ptrdiff_t blocker = context.firstCollision(candidate);
+        if (blocker != CollisionChecker::kNone) {
+          if (counts == nullptr) {
+            counts = &context.blockerCounts();
+          }
+          ++(*counts)[static_cast<std::size_t>(blocker)];
+          ++collided;
+          blocked = true;
+        }
+      }
+      if (blocked) {
+        return false;
+      }
+      if (!orientFirst) {
+        candidate.orientation = sampleOrientation(engine, object);
+      }
+      context.addPlacement(name(), candidate, attempt, params_.hides);
+      return true;
+    };
+
+    // Rejection first, over the box the cells would cover: a draw that passes is uniform over
+    // the free positions, as a draw from the cells is, so the mixture of the two is uniform too.
+    // Most objects are placed here and never pay for the cells.
+    // An eighth of a small attempt limit, so that the cells still get most of it.
+    const std::uint32_t rejectionAttempts = std::min(limit / 8, kRejectionAttempts);
+    const bool plainRange = !params_.region;
+    bool placed = false;
+    std::uint32_t attempt = 1;
+    for (; attempt <= rejectionAttempts && !placed; ++attempt) {
+      const double x = uniform(engine, lo.x(), hi.x());
+      const double y = uniform(engine, lo.y(), hi.y());
+      placed = attemptAt(Eigen::Vector2d(x, y), attempt, plainRange);
+    }
+    if (placed) {
+      continue;
+    }
+    if (attempt > limit) {
+      return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+    }
+
     const CellKey key{radius, margin, z, bottom};
     if (!(key == previous)) {
-      Eigen::Vector2d lo;
-      Eigen::Vector2d hi;
-      shapeBounds(region, lo, hi);
-      lo += Eigen::Vector2d::Constant(margin);
-      hi -= Eigen::Vector2d::Constant(margin);
-      if (!(hi.x() > lo.x() && hi.y() > lo.y())) {
-        // A region of no area (a range the shrink leaves zero wide): robosuite's draws.
-        if (!placeOne(context, entry, base, onTop)) {
-          return false;
-        }
-        previous = CellKey();
-        continue;
-      }
       const double side = radius > 0.0 ? radius : (hi - lo).maxCoeff() / 32.0;
       cells.reset(lo, hi, side, kMaxCells);
       double reach = 2.0 * radius;
@@ -190,14 +255,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       return failOutOfTime(context, object, 0);
     }
 
-    std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
-    std::uint32_t outside = 0;
-    std::uint32_t collided = 0;
-    Candidate candidate;
-    candidate.object = &object;
-    candidate.position.z() = z;
-    bool placed = false;
-    for (std::uint32_t attempt = 1; attempt <= limit && !placed; ++attempt) {
+    for (; attempt <= limit && !placed; ++attempt) {
       if (cells.empty()) {
         return fail(context, &object, attempt - 1,
                     // "1 attempts" stays: shipped outputs (scripts/same_output) hold this text.
@@ -211,36 +269,13 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       int level = 0;
       std::size_t index = 0;
       const Eigen::Vector2d local = cells.draw(engine, level, index);
-      candidate.position.head<2>() = local + offset;
-      if (orientFirst) {
-        candidate.orientation = sampleOrientation(engine, object);
-      }
-      bool blocked = shapeDepth(region, local) < margin;
-      for (std::size_t i = 0; i < params_.keepOut.size() && !blocked; ++i) {
-        const KeepOutZone& zone = params_.keepOut[i];
-        blocked = keepOutBlocks(zone, zone.world ? Eigen::Vector2d(local + offset) : local, margin);
-      }
-      outside += blocked ? 1 : 0;
-      if (!blocked && check) {
-        const std::ptrdiff_t blocker = context.firstCollision(candidate);
-        if (blocker != CollisionChecker::kNone) {
-          ++(*counts)[static_cast<std::size_t>(blocker)];
-          ++collided;
-          blocked = true;
-        }
-      }
-      if (blocked) {
+      placed = attemptAt(local, attempt, false);
+      if (!placed) {
         cells.refine(level, index, covered);
         if (outOfTime) {
           return failOutOfTime(context, object, attempt);
         }
-        continue;
       }
-      if (!orientFirst) {
-        candidate.orientation = sampleOrientation(engine, object);
-      }
-      context.addPlacement(name(), candidate, attempt, params_.hides);
-      placed = true;
     }
     if (!placed) {
       return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);

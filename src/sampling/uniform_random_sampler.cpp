@@ -94,6 +94,10 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
   }
   checkShapes(where);
   axis_ = Eigen::Vector3d::Unit(params_.rotationAxis);
+  // free_space's box: the region's bounds, once (a shape's bounds come from its triangles).
+  shapeBounds(
+      params_.region ? *params_.region : RegionShape::rectangle(params_.xRange, params_.yRange),
+      boundsLo_, boundsHi_);
   addObjects(objects);
 }
 

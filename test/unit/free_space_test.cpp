@@ -115,6 +115,34 @@ TEST(FreeSpace, SameDistributionAsRejectionInAClutteredSquare) {
                          statistics, 3000);
 }
 
+/// free_space tries rejection first and builds the cells only when those attempts failed (an
+/// eighth of max_attempts, at most 512): with 64 attempts, 8 are rejection's, and many crowded
+/// objects are placed from the cells, so the scenes are a mixture of both ways. Each is uniform
+/// over the free positions, so the mixture is too: the same distribution as rejection.
+TEST(FreeSpace, RejectionFirstThenCellsIsStillRejectionsDistribution) {
+  const std::string range = "x_range: [-0.2, 0.2], y_range: [-0.2, 0.2]";
+  std::vector<std::pair<std::string, Statistic>> statistics;
+  for (const std::size_t k : {9u, 24u}) {
+    statistics.push_back({"x of object " + std::to_string(k),
+                          [k](const SceneResult& s) { return s.placements[k].position.x(); }});
+    statistics.push_back({"nearest earlier object of object " + std::to_string(k),
+                          [k](const SceneResult& s) { return nearestEarlier(s, k); }});
+  }
+  const std::string freeSpace = clutter(25, "free_space", range + ", max_attempts: 64");
+  expectSameDistribution(clutter(25, "rejection", range + ", max_attempts: 100000"), freeSpace,
+                         statistics, 3000);
+  // The cells really placed a good share of the objects (an attempt after the 8th is theirs).
+  std::size_t fromCells = 0;
+  std::size_t placed = 0;
+  for (const SceneResult& s : run(freeSpace, 12, 3000)) {
+    for (const ObjectPlacement& p : s.placements) {
+      fromCells += p.attempts > 8 ? 1 : 0;
+      ++placed;
+    }
+  }
+  EXPECT_GT(fromCells, placed / 50) << fromCells << " of " << placed;
+}
+
 TEST(FreeSpace, SameDistributionAsRejectionInAnAnnulusWithKeepOut) {
   const std::string shape =
       "region: {shape: annulus, inner_radius: 0.1, outer_radius: 0.3}, keep_out: [{shape: "
@@ -157,6 +185,8 @@ TEST(FreeSpace, FillsWhereRejectionRunsOut) {
   EXPECT_GE(placed, 95u);
 }
 
+/// Nothing is free: the rejection attempts (512 of the default 5000) fail, and the cells built
+/// then are empty, which ends the attempts.
 TEST(FreeSpace, FailsAtOnceWhenNothingIsFree) {
   const std::vector<SceneResult> out =
       run("objects:\n  a: {shape: cylinder, radius: 0.1, length: 0.1}\n  b: {shape: cylinder, "
@@ -167,7 +197,7 @@ TEST(FreeSpace, FailsAtOnceWhenNothingIsFree) {
   ASSERT_FALSE(out[0].success);
   EXPECT_EQ(out[0].message,
             "could not place object 'b' with sampler 'S': no free position is left (strategy "
-            "free_space, 0 attempts)");
+            "free_space, 512 attempts)");
 }
 
 /// Under fcl the radius test does not prune (fcl may accept what it refuses): the scenes still
@@ -194,7 +224,8 @@ TEST(FreeSpace, UnknownStrategyIsAnError) {
 }
 
 /// Pruning the cells of many keep-out zones for objects of many sizes reads the clock: with a
-/// limit that has passed, the scene fails instead of pruning on.
+/// limit that has passed, the scene fails instead of pruning on. (With max_attempts 7 the cells
+/// are built at once: the rejection attempts before them are an eighth of the limit.)
 TEST(FreeSpace, StopsPruningWhenTimeRunsOut) {
   std::string yaml = "objects:\n";
   std::string names;
@@ -203,7 +234,7 @@ TEST(FreeSpace, StopsPruningWhenTimeRunsOut) {
             "}\n";
     names += (i ? ", o" : "o") + std::to_string(i);
   }
-  yaml += "samplers:\n  - {name: S, strategy: free_space, objects: [" + names +
+  yaml += "samplers:\n  - {name: S, strategy: free_space, max_attempts: 7, objects: [" + names +
           "], x_range: [-1, 1], y_range: [-1, 1], keep_out: [";
   for (int k = 0; k < 200; ++k) {
     yaml += (k ? ", " : "") + std::string("{shape: disk, centre: [") +

@@ -132,6 +132,8 @@ class UniformRandomSampler : public PlacementSampler {
 
   UniformSamplerParams params_;
   Eigen::Vector3d axis_;
+  Eigen::Vector2d boundsLo_ = Eigen::Vector2d::Zero();  ///< the region's bounds [m]
+  Eigen::Vector2d boundsHi_ = Eigen::Vector2d::Zero();
   std::vector<Entry> entries_;
 };
 
