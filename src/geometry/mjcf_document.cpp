@@ -461,7 +461,7 @@ class Preparer {
     }
     XMLElement* asset = nullptr;
     for (const std::string& name : materialReferences_) {
-      if (!materials_.insert(name).second) {
+      if (name.empty() || !materials_.insert(name).second) {
         continue;
       }
       out_.warnings.push_back("material " + quoteText(name) +

@@ -102,7 +102,7 @@ PhysicsStatus PhysicsStep::run(SceneResult& result,
     result.message = "physics: the scene has more contacts than MuJoCo's buffers of " +
                      std::to_string(world_.contactCapacity()) + " contacts hold, and twice as " +
                      "many would take more than this thread's share of physics_max_memory_mb (" +
-                     std::to_string(world_.maxBytes()) + " of " +
+                     std::to_string(world_.maxBytes()) + " bytes of its " +
                      std::to_string(physics_.settings().maxMemoryMb) + " MiB)";
     return PhysicsStatus::TimedOut;
   }

@@ -165,6 +165,37 @@ TEST(PhysicsMemory, ThreadsAreCountedInTheMemory) {
   }
 }
 
+// A plate on a bed of 900 balls touches 900 of them: buffers for 320 contacts already take
+// more than 16 MiB (rows x rows doubles). The
+// scene fails and says why; the request and the other scenes go on.
+TEST(PhysicsMemory, ScenesBeyondTheThreadsShareFailWithAMessage) {
+  std::string yaml =
+      "physics_max_memory_mb: 16\nphysics_seconds: 0.1\nobjects:\n"
+      "  ball: {shape: sphere, radius: 0.01}\n  plate: {shape: box, size: [1.0, 1.0, 0.02]}\n"
+      "fixtures:\n";
+  for (int i = 0; i < 30; ++i) {
+    for (int j = 0; j < 30; ++j) {
+      yaml += "  - {name: b" + std::to_string(30 * i + j) + ", object: ball, position: [" +
+              std::to_string(-0.435 + 0.03 * i) + ", " + std::to_string(-0.435 + 0.03 * j) +
+              ", 0.01]}\n";
+    }
+  }
+  yaml +=
+      "samplers:\n  - {name: S, objects: [plate], x_range: [0, 0], y_range: [0, 0], rotation: "
+      "0.0, reference_pos: [0, 0, 0.02], z_offset: 0.001, ensure_object_boundary_in_range: "
+      "false}\n";
+  const SceneGenerator generator(buildFromYaml(yaml));
+  SampleRequest request;
+  request.physics = PhysicsMode::Check;
+  const SceneResult scene = generator.sampleScene(generator.prepare(request), 1, 0);
+  EXPECT_FALSE(scene.success);
+  EXPECT_FALSE(scene.simulated);
+  EXPECT_EQ(scene.message,
+            "physics: the scene has more contacts than MuJoCo's buffers of 160 contacts hold, "
+            "and twice as many would take more than this thread's share of "
+            "physics_max_memory_mb (16777216 bytes of its 16 MiB)");
+}
+
 // Fixtures touch nothing but the bodies: a thousand of them no longer size the buffers.
 TEST(PhysicsMemory, FixturesDoNotSizeTheBuffers) {
   const SceneGenerator generator(buildFromYaml(boxes(1)));
