@@ -34,6 +34,8 @@ PS_PACKAGES=(
   # MuJoCo reads MJCF objects; its CMake config needs OpenGL's and qhull's development files
   # without depending on them (a fresh Debian 12 failed at configure).
   libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev
+  # MJCF objects are read and bounded before MuJoCo compiles them (the XML parser MuJoCo uses).
+  libtinyxml2-dev
 )
 
 ps_sudo() {

@@ -42,14 +42,15 @@ bool startsWith(std::string_view text, std::size_t at, std::string_view prefix) 
   return text.compare(at, prefix.size(), prefix) == 0;
 }
 
-}  // namespace
-
-std::string readFileBounded(const std::string& path, std::size_t maxBytes, const char* what) {
+std::string readBounded(const std::string& path, std::size_t maxBytes, const char* what,
+                        bool regularOnly) {
   const std::string cannot = std::string("cannot read ") + what + ": ";
   if (path.find('\0') != std::string::npos) {
     throw ConfigError(cannot + "the path contains a NUL byte");
   }
-  const Descriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY));
+  // O_NONBLOCK: opening a FIFO that no one writes to returns at once instead of waiting.
+  const Descriptor fd(
+      ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | (regularOnly ? O_NONBLOCK : 0)));
   if (fd.get() < 0) {
     const int error = errno;
     throw ConfigError(cannot +
@@ -61,6 +62,9 @@ std::string readFileBounded(const std::string& path, std::size_t maxBytes, const
   }
   if (S_ISDIR(status.st_mode)) {
     throw ConfigError(cannot + "it is a directory");
+  }
+  if (regularOnly && !S_ISREG(status.st_mode)) {
+    throw ConfigError(cannot + "not a regular file");
   }
   const std::string tooLarge =
       std::string(what) + " is larger than the limit of " + bytesText(maxBytes);
@@ -92,6 +96,17 @@ std::string readFileBounded(const std::string& path, std::size_t maxBytes, const
   }
   text.resize(used);
   return text;
+}
+
+}  // namespace
+
+std::string readFileBounded(const std::string& path, std::size_t maxBytes, const char* what) {
+  return readBounded(path, maxBytes, what, false);
+}
+
+std::string readRegularFileBounded(const std::string& path, std::size_t maxBytes,
+                                   const char* what) {
+  return readBounded(path, maxBytes, what, true);
 }
 
 int xmlNestingDepth(std::string_view text, int stopAbove) {

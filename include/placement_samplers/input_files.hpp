@@ -15,6 +15,12 @@ namespace placement_samplers {
 ///        than @p maxBytes ("... is larger than the limit of N bytes")
 std::string readFileBounded(const std::string& path, std::size_t maxBytes, const char* what);
 
+/// readFileBounded for files that must be regular files (an MJCF document, the files it
+/// names): opened without blocking and refused unless regular, so a FIFO, a device or a
+/// directory never makes the caller wait or read without end.
+/// @throw ConfigError as readFileBounded, and "not a regular file"
+std::string readRegularFileBounded(const std::string& path, std::size_t maxBytes, const char* what);
+
 /// The deepest element nesting of the XML document @p text (the root element is level 1),
 /// scanning at most until it exceeds @p stopAbove: comments, CDATA sections, processing
 /// instructions, the DOCTYPE and quoted attribute values are skipped. A cheap linear scan,

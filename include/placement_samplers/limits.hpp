@@ -25,6 +25,17 @@ constexpr std::size_t kUrdfLinks = 10000;
 /// Element nesting of an XML document (URDF, COLLADA) handed to a parser that recurses.
 constexpr int kXmlDepth = 256;
 
+/// Bodies of an MJCF document with its included files (a <composite> counts the bodies it
+/// makes): MuJoCo's compiler takes time that grows with the square of them.
+constexpr std::size_t kMjcfBodies = 10000;
+/// Geoms of an MJCF document with its included files.
+constexpr std::size_t kMjcfGeoms = 10000;
+/// Files (meshes, height fields) an MJCF document names, and their bytes together.
+constexpr std::size_t kMjcfFiles = 1000;
+constexpr std::size_t kMjcfFileBytes = std::size_t{64} << 20;
+/// Samples of a height field (nrow x ncol, or its file's image or grid): 16 MiB of floats.
+constexpr std::uint64_t kHfieldSamples = std::uint64_t{1} << 22;
+
 /// Bytes of a mesh file.
 constexpr std::size_t kMeshBytes = std::size_t{16} << 20;
 /// Triangles of all meshes of one configuration together (each instance of a mesh counts).

@@ -2,6 +2,7 @@
 // Pieces of the configuration builder (config_builder.cpp), one file each: the top-level
 // settings, the items of a samplers list, a uniform sampler's parameters. Private to the core.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,13 +32,19 @@ void readSettings(const ConfigNode& root, SceneConfig& config);
 constexpr double kMaxPhysicsSeconds = 60.0;   ///< simulated time per scene [s]
 constexpr double kMaxPhysicsTimestep = 0.1;   ///< [s]
 constexpr double kMinPhysicsTimestep = 1e-4;  ///< [s]
-constexpr double kMaxDensity = 1e5;           ///< [kg/m^3] (osmium: 22,590)
+/// [kg/m^3]: about air's (1.2); anything lighter would float away rather than rest. It keeps
+/// MuJoCo's body masses finite and positive (MuJoCo refuses bodies lighter than 1e-15 kg).
+constexpr double kMinDensity = 1.0;
+constexpr double kMaxDensity = 1e5;  ///< [kg/m^3] (osmium: 22,590)
+/// MuJoCo data of one request's simulations [MiB] (physics_max_memory_mb).
+constexpr std::int64_t kMinPhysicsMemoryMb = 16;
+constexpr std::int64_t kMaxPhysicsMemoryMb = 1 << 20;
 
 /// Reads the physics keys (physics, physics_seconds, physics_timestep, the tolerances,
-/// physics_retry, physics_max_draws, ground_z, density) into @p physics.
+/// physics_retry, physics_max_draws, physics_max_memory_mb, ground_z, density) into @p physics.
 void readPhysicsSettings(const ConfigNode& root, PhysicsSettings& physics);
 
-/// A density in (0, kMaxDensity] [kg/m^3]: the top-level default or an object's own.
+/// A density in [kMinDensity, kMaxDensity] [kg/m^3]: the top-level default or an object's own.
 double parseDensity(const ConfigNode& node);
 
 /// Adds to @p names the names of samplers in @p list (and nested lists) whose parameters live

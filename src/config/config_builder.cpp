@@ -27,8 +27,8 @@ class Builder {
       if (!isValidName(entry.first)) {
         entry.second.fail("object names must match [A-Za-z0-9_-]+");
       }
-      config_.objects.push_back(
-          std::make_shared<ObjectModel>(parseObject(entry.first, entry.second, options_, meshes_)));
+      config_.objects.push_back(std::make_shared<ObjectModel>(
+          parseObject(entry.first, entry.second, options_, meshes_, &config_.warnings)));
     }
     config_.indexObjects();
   }

@@ -47,6 +47,7 @@ constexpr const char* kTopLevelKeys[] = {"frame_id",
                                          "physics_rotation_tolerance",
                                          "physics_retry",
                                          "physics_max_draws",
+                                         "physics_max_memory_mb",
                                          "ground_z",
                                          "density"};
 

@@ -141,6 +141,14 @@ std::vector<Shape> parseUrdf(const std::string& name, const ConfigNode& node,
   }
 }
 
+/// @p mjcf with "@p label: " before each warning.
+MjcfObject labelWarnings(MjcfObject mjcf, const std::string& label) {
+  for (std::string& warning : mjcf.warnings) {
+    warning = label + ": " + warning;
+  }
+  return mjcf;
+}
+
 /// The collision geometry and sites of an `mjcf_file` object (robosuite's MujocoXMLObject).
 MjcfObject parseMjcf(const std::string& name, const ConfigNode& node, const BuildOptions& options,
                      MeshLoader& meshes) {
@@ -161,7 +169,7 @@ MjcfObject parseMjcf(const std::string& name, const ConfigNode& node, const Buil
       param->fail(object + label + ": " + e.what());
     }
     try {
-      return loadMjcfText(text, limits::kMeshTriangles);
+      return labelWarnings(loadMjcfText(text, limits::kMeshTriangles), object + label);
     } catch (const ConfigError& e) {
       param->fail(object + label + ": " + e.what());
     }
@@ -180,7 +188,7 @@ MjcfObject parseMjcf(const std::string& name, const ConfigNode& node, const Buil
   const std::string label =
       "mjcf_file " + quoteText(uri) + (path != uri ? " (" + escapeText(path) + ")" : "");
   try {
-    return loadMjcfObject(path, limits::kMeshTriangles);
+    return labelWarnings(loadMjcfObject(path, limits::kMeshTriangles), object + label);
   } catch (const ConfigError& e) {
     file.fail(object + label + ": " + e.what());
   }
@@ -284,7 +292,8 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node) {
 }
 
 ObjectModel parseObject(const std::string& name, const ConfigNode& node,
-                        const BuildOptions& options, MeshLoader& meshes) {
+                        const BuildOptions& options, MeshLoader& meshes,
+                        std::vector<std::string>* warnings) {
   if (!node.isMap()) {
     node.fail("expected a map with the object's shape and sizes, got " +
               std::string(ConfigNode::typeName(node.type())));
@@ -300,6 +309,9 @@ ObjectModel parseObject(const std::string& name, const ConfigNode& node,
     // an init_orientation the offsets turn with the object, as derived ones would; the radius,
     // robosuite's number, stays.
     MjcfObject mjcf = parseMjcf(name, node, options, meshes);
+    if (warnings != nullptr) {
+      warnings->insert(warnings->end(), mjcf.warnings.begin(), mjcf.warnings.end());
+    }
     shapes = std::move(mjcf.shapes);
     siteOffsets = true;  // turned below, once init_orientation is read
     overrides.hasBottomOffset = overrides.hasTopOffset = overrides.hasHorizontalRadius = true;

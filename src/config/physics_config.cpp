@@ -35,7 +35,14 @@ double positiveAtMost(const ConfigNode& node, double max, const char* what) {
 }  // namespace
 
 double parseDensity(const ConfigNode& node) {
-  return positiveAtMost(node, kMaxDensity, "density [kg/m^3]");
+  const double v = node.asDouble();
+  if (!(v >= kMinDensity && v <= kMaxDensity)) {
+    std::ostringstream out;
+    out << "expected a density [kg/m^3] in [" << kMinDensity << ", " << kMaxDensity << "], got "
+        << v;
+    node.fail(out.str());
+  }
+  return v;
 }
 
 void readPhysicsSettings(const ConfigNode& root, PhysicsSettings& physics) {
@@ -66,6 +73,10 @@ void readPhysicsSettings(const ConfigNode& root, PhysicsSettings& physics) {
   }
   if (const ConfigNode* n = root.get("physics_max_draws")) {
     physics.maxDraws = static_cast<std::uint32_t>(n->asInt(1, 1000));
+  }
+  if (const ConfigNode* n = root.get("physics_max_memory_mb")) {
+    physics.maxMemoryMb =
+        static_cast<std::uint32_t>(n->asInt(kMinPhysicsMemoryMb, kMaxPhysicsMemoryMb));
   }
   if (const ConfigNode* n = root.get("ground_z")) {
     const double z = n->asDouble();

@@ -3,12 +3,12 @@
 #include <mujoco/mujoco.h>
 
 #include <cctype>
-#include <cstring>
 #include <cmath>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 
+#include "geometry/mjcf_document.hpp"
 #include "geometry/mujoco_compile.hpp"
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/input_files.hpp"
@@ -19,7 +19,6 @@ namespace placement_samplers {
 namespace {
 
 using detail::MujocoModelPtr;
-using detail::MujocoVfsPtr;
 
 const char* nameOf(const mjModel& m, int address) { return m.names + address; }
 
@@ -92,51 +91,6 @@ Eigen::Vector3d sitePos(const mjModel& m, const char* name, int top) {
   return poseInTop(m, body, top) * Eigen::Vector3d(p[0], p[1], p[2]);
 }
 
-/// An 8 x 8 grey PNG: what every texture file is read as. Textures change no geometry, and
-/// robosuite's files name textures a user may not have (../textures/...).
-constexpr unsigned char kPlaceholderPng[] = {
-    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
-    0x52, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00, 0x08, 0x08, 0x02, 0x00, 0x00, 0x00, 0x4b,
-    0x6d, 0x29, 0xdc, 0x00, 0x00, 0x00, 0x0f, 0x49, 0x44, 0x41, 0x54, 0x78, 0xda, 0x63, 0x68,
-    0xc0, 0x01, 0x18, 0x86, 0x96, 0x04, 0x00, 0x82, 0xf3, 0x60, 0x01, 0x25, 0x95, 0xb3, 0x63,
-    0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
-
-/// A virtual file system in which every texture file the document names is the placeholder:
-/// MuJoCo looks files up there first, by their name without the path. The `file` attributes of
-/// <texture> elements are found by a scan of the text (not of included files).
-MujocoVfsPtr textureVfs(const std::string& text) {
-  MujocoVfsPtr vfs = detail::makeVfs();
-  std::size_t at = 0;
-  while ((at = text.find("<texture", at)) != std::string::npos) {
-    const std::size_t end = text.find('>', at);
-    const std::string element =
-        text.substr(at, end == std::string::npos ? std::string::npos : end - at);
-    at += 8;
-    const std::size_t file = element.find(" file=");
-    if (file == std::string::npos || file + 7 >= element.size()) {
-      continue;
-    }
-    const char quote = element[file + 6];
-    const std::size_t close = element.find(quote, file + 7);
-    if ((quote != '"' && quote != '\'') || close == std::string::npos) {
-      continue;
-    }
-    std::string name = element.substr(file + 7, close - file - 7);
-    name = name.substr(
-        name.find_last_of("/\\") == std::string::npos ? 0 : name.find_last_of("/\\") + 1);
-    if (name.empty() || name.size() >= mjMAXVFSNAME ||
-        mj_findFileVFS(vfs.get(), name.c_str()) >= 0) {
-      continue;
-    }
-    if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(), sizeof(kPlaceholderPng)) != 0) {
-      break;  // full: the remaining textures must exist
-    }
-    const int index = mj_findFileVFS(vfs.get(), name.c_str());
-    std::memcpy(vfs->filedata[index], kPlaceholderPng, sizeof(kPlaceholderPng));
-  }
-  return vfs;
-}
-
 /// The name of the document's root element ("" when there is none): what is after the first
 /// '<' that does not open a declaration, comment or processing instruction.
 std::string rootElement(const std::string& text) {
@@ -164,9 +118,6 @@ std::string rootElement(const std::string& text) {
   return "";
 }
 
-/// Name of the document in MuJoCo's virtual file system when it comes as text.
-constexpr const char* kTextName = "placement_samplers_mjcf_param.xml";
-
 /// Loads @p text; @p path is its file, or "" when the text is all there is (it is then read
 /// from the virtual file system).
 MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_t maxTriangles);
@@ -175,7 +126,8 @@ MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_
 
 MjcfObject loadMjcfObject(const std::string& path, std::size_t maxTriangles) {
   // The same limits as a URDF file, checked before MuJoCo's parser recurses over the document.
-  return loadMjcf(readFileBounded(path, limits::kUrdfBytes, "the MJCF file"), path, maxTriangles);
+  return loadMjcf(readRegularFileBounded(path, limits::kUrdfBytes, "the MJCF file"), path,
+                  maxTriangles);
 }
 
 MjcfObject loadMjcfText(const std::string& text, std::size_t maxTriangles) {
@@ -201,17 +153,14 @@ MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_
                       (root.empty() ? std::string("missing") : "<" + escapeText(root) + ">") +
                       ", expected <mujoco>");
   }
+  // MuJoCo reads every file from here, never from the disk itself.
+  const detail::MjcfDocument document = detail::prepareMjcf(text, path);
   MujocoModelPtr model;
   try {
-    const MujocoVfsPtr vfs = textureVfs(text);
-    std::string file = path;
-    if (path.empty()) {
-      file = kTextName;
-      detail::addVfsFile(*vfs, kTextName, text);
-    }
-    model = detail::compileMjcf(file, vfs.get());
+    model = detail::compileMjcf(document.file, document.vfs.get());
   } catch (const std::runtime_error& e) {
-    throw ConfigError(std::string("MuJoCo could not load it: ") + escapeText(e.what()));
+    throw ConfigError(std::string("MuJoCo could not load it: ") +
+                      escapeText(document.originalNames(e.what())));
   }
   const mjModel& m = *model;
   if (m.nbody < 2) {
@@ -219,6 +168,7 @@ MjcfObject loadMjcf(const std::string& text, const std::string& path, std::size_
   }
   const int top = 1;  // the first body below the world
   MjcfObject out;
+  out.warnings = document.warnings;
   out.bottomOffset = sitePos(m, "bottom_site", top);
   out.topOffset = sitePos(m, "top_site", top);
   // robosuite's MujocoXMLObject.horizontal_radius is the site's x coordinate alone.

@@ -231,6 +231,7 @@ void appendPhysics(std::string& out, const PhysicsSettings& p) {
     keys += keys.empty() ? "\"physics_retry\": true" : ", \"physics_retry\": true";
   }
   number("physics_max_draws", p.maxDraws, defaults.maxDraws);
+  number("physics_max_memory_mb", p.maxMemoryMb, defaults.maxMemoryMb);
   if (p.groundZ) {
     number("ground_z", *p.groundZ, std::numeric_limits<double>::quiet_NaN());
   }

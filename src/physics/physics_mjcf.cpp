@@ -106,7 +106,8 @@ void appendGeom(std::string& out, const Shape& shape, const Eigen::Isometry3d& p
 std::string physicsBodyName(std::size_t index) { return "body" + std::to_string(index); }
 
 std::string physicsMjcf(const std::vector<PhysicsFixture>& fixtures,
-                        const std::vector<PhysicsBody>& bodies, const PhysicsSettings& settings) {
+                        const std::vector<PhysicsBody>& bodies, const PhysicsSettings& settings,
+                        const PhysicsBuffers& buffers) {
   MeshAssets meshes;
   std::string assets;
   std::string world;
@@ -124,26 +125,22 @@ std::string physicsMjcf(const std::vector<PhysicsFixture>& fixtures,
       appendGeom(world, shape, pose * shape.pose, -1.0, meshes, assets, "    ");
     }
   }
-  std::size_t geoms = 0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const PhysicsBody& b = bodies[i];
     world += "    <body name=\"" + physicsBodyName(i) + "\">\n      <freejoint/>\n";
     for (const Shape& shape : b.object->shapes) {
       appendGeom(world, shape, shape.pose, b.density, meshes, assets, "      ");
-      ++geoms;
     }
     world += "    </body>\n";
   }
-  // Contact buffers for a resting pile: a few contacts per geom and fixture; pyramidal
-  // friction cones take four constraint rows per contact (condim 3).
-  const std::size_t contacts = 8 * (geoms + fixtures.size()) + 32;
   std::string out = "<mujoco model=\"placement_samplers_scene\">\n";
   out += "  <compiler angle=\"radian\"/>\n  <option";
   appendAttribute(out, "timestep", &settings.timestep, 1);
   // Several contact points between flat faces of convex shapes (a cylinder or a mesh on a
   // box): with one, as by default, a plate on a table rocks and rolls away.
   out += ">\n    <flag multiccd=\"enable\"/>\n  </option>\n  <size nconmax=\"" +
-         std::to_string(contacts) + "\" njmax=\"" + std::to_string(4 * contacts) + "\"/>\n";
+         std::to_string(buffers.contacts) + "\" njmax=\"" + std::to_string(buffers.rows) +
+         "\" nstack=\"" + std::to_string(buffers.stack) + "\"/>\n";
   if (!assets.empty()) {
     out += "  <asset>\n" + assets + "  </asset>\n";
   }

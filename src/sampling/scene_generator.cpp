@@ -321,10 +321,14 @@ void SceneGenerator::sampleInto(const PreparedRequest& request, std::uint64_t se
   }
   threads =
       static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(count, 1)));
+  if (request.physicsModel && count > 0) {
+    // Each simulating thread holds MuJoCo data of its own: as many as the memory allows.
+    threads = request.physicsModel->simulatingThreads(threads);
+  }
   std::atomic<std::uint64_t> next{0};
   const auto deadline = request.deadline;
   auto work = [&] {
-    Worker worker(request, config_->collisionMargin);
+    Worker worker(request, config_->collisionMargin, threads);
     worker.setDeadline(deadline);
     // Small chunks keep the threads balanced when some scenes take many attempts.
     constexpr std::uint64_t kChunk = Worker::kChunk;

@@ -74,8 +74,20 @@ int ScenePhysics::bodyOf(const ObjectModel* object) const {
   return found == bodyIndex_.end() ? -1 : found->second;
 }
 
-PhysicsStep::PhysicsStep(const ScenePhysics& physics)
-    : physics_(physics), world_(physics.model()) {}
+unsigned ScenePhysics::simulatingThreads(unsigned threads) const {
+  const std::uint64_t perThread = model()->worldBytes();
+  const std::uint64_t cap = std::uint64_t{settings_.maxMemoryMb} << 20;
+  // model() refused a model whose one simulation does not fit.
+  return static_cast<unsigned>(std::max<std::uint64_t>(
+      1, std::min<std::uint64_t>(threads, cap / std::max<std::uint64_t>(perThread, 1))));
+}
+
+std::uint64_t ScenePhysics::threadShare(unsigned threads) const {
+  return (std::uint64_t{settings_.maxMemoryMb} << 20) / std::max(threads, 1u);
+}
+
+PhysicsStep::PhysicsStep(const ScenePhysics& physics, std::uint64_t maxBytes)
+    : physics_(physics), world_(physics.model(), maxBytes) {}
 
 PhysicsStatus PhysicsStep::run(SceneResult& result,
                                std::optional<std::chrono::steady_clock::time_point> deadline) {
@@ -99,6 +111,15 @@ PhysicsStatus PhysicsStep::run(SceneResult& result,
     result.success = false;
     result.message = "not finished: the request ran out of time while simulating the scene";
     return status;
+  }
+  if (status == PhysicsStatus::TooLarge) {
+    result.success = false;
+    result.message = "physics: the scene has more contacts than MuJoCo's buffers of " +
+                     std::to_string(world_.contactCapacity()) + " contacts hold, and twice as " +
+                     "many would take more than this thread's share of physics_max_memory_mb (" +
+                     std::to_string(world_.maxBytes()) + " bytes of its " +
+                     std::to_string(physics_.settings().maxMemoryMb) + " MiB)";
+    return PhysicsStatus::TimedOut;
   }
   result.simulated = true;
   result.stable = status == PhysicsStatus::Stable;

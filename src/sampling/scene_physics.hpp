@@ -30,6 +30,13 @@ class ScenePhysics {
   std::shared_ptr<const PhysicsModel> model() const;
   /// The body of @p object, or -1 (a hidden object, or not in the scene).
   int bodyOf(const ObjectModel* object) const;
+  /// How many of @p threads simulate at once: as many as fit in physics_max_memory_mb with a
+  /// new simulation's MuJoCo data each (they share it equally; the results do not depend on
+  /// it). Compiles the model.
+  /// @throw RequestError as model(), and when not even one fits, with the numbers
+  unsigned simulatingThreads(unsigned threads) const;
+  /// The share of physics_max_memory_mb of each of @p threads simulating threads [bytes].
+  std::uint64_t threadShare(unsigned threads) const;
 
  private:
   PhysicsSettings settings_;
@@ -44,12 +51,13 @@ class ScenePhysics {
 /// One thread's simulation of sampled scenes.
 class PhysicsStep {
  public:
-  explicit PhysicsStep(const ScenePhysics& physics);
+  /// @param maxBytes the most this thread's MuJoCo data may take (ScenePhysics::threadShare)
+  PhysicsStep(const ScenePhysics& physics, std::uint64_t maxBytes);
 
   /// Simulates the placed scene @p result: fills its physics outcomes, `simulated` and
   /// `stable`, and with PhysicsMode::Settle puts the settled poses into its placements.
-  /// A MuJoCo error or the deadline fails the scene with a message.
-  /// @return the status (TimedOut also for an error: the scene failed)
+  /// A MuJoCo error, the deadline or contacts beyond maxBytes fail the scene with a message.
+  /// @return the status (TimedOut also for an error or TooLarge: the scene failed)
   PhysicsStatus run(SceneResult& result,
                     std::optional<std::chrono::steady_clock::time_point> deadline);
 

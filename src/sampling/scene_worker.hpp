@@ -20,13 +20,17 @@ class SceneGenerator::Worker {
   /// Scenes per chunk: a thread takes this many at a time.
   static constexpr std::size_t kChunk = 16;
 
-  Worker(const PreparedRequest& request, double margin)
+  /// @param simulatingThreads workers that simulate at once: each takes its share of the
+  ///        request's physics memory (ScenePhysics::threadShare)
+  Worker(const PreparedRequest& request, double margin, unsigned simulatingThreads = 1)
       : request_(request),
         checker_(makeCollisionChecker(request.collisionCheck, margin)),
         context_(engine_, *checker_, request.maxAttempts),
         objects_(request.sampler->objects().size()) {
     if (request.physicsModel) {
-      physics_ = std::make_unique<PhysicsStep>(*request.physicsModel);  // compiles it once
+      // Compiles the model once, whichever worker comes first.
+      physics_ = std::make_unique<PhysicsStep>(
+          *request.physicsModel, request.physicsModel->threadShare(simulatingThreads));
     }
   }
 

@@ -301,7 +301,7 @@ TEST(ConfigBuilder, UnknownKeysNameThePath) {
             "threads, max_scenes_per_request, max_request_seconds, max_fixtures_per_request, "
             "max_placements_per_request, tf_static, tf_rate, physics, physics_seconds, "
             "physics_timestep, physics_position_tolerance, physics_rotation_tolerance, "
-            "physics_retry, physics_max_draws, ground_z, density)");
+            "physics_retry, physics_max_draws, physics_max_memory_mb, ground_z, density)");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, x_rnage: [0, 1]}\n"),
             "samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, x_range, "
             "y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "

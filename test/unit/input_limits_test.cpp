@@ -873,7 +873,7 @@ TEST(InputLimits, NamesWithControlCharactersAreShownEscaped) {
             "threads, max_scenes_per_request, max_request_seconds, max_fixtures_per_request, "
             "max_placements_per_request, tf_static, tf_rate, physics, physics_seconds, "
             "physics_timestep, physics_position_tolerance, physics_rotation_tolerance, "
-            "physics_retry, physics_max_draws, ground_z, density)");
+            "physics_retry, physics_max_draws, physics_max_memory_mb, ground_z, density)");
   const SceneGenerator generator(buildFromYaml(kTable));
   SampleRequest request;
   request.sampler = std::string("Shelf\0Sampler", 13);

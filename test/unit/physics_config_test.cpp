@@ -81,13 +81,14 @@ TEST(PhysicsConfig, BadParametersAreConfigurationErrors) {
   EXPECT_EQ(error("physics: wobble"), "physics: expected none, check or settle, got 'wobble'");
   EXPECT_EQ(error("physics_max_draws: 0"),
             "physics_max_draws: expected an integer in [1, 1000], got an integer (0)");
-  EXPECT_EQ(error("density: -5"),
-            "density: expected a positive density [kg/m^3] of at most 100000, got -5");
+  EXPECT_EQ(error("density: -5"), "density: expected a density [kg/m^3] in [1, 100000], got -5");
+  EXPECT_EQ(error("physics_max_memory_mb: 8"),
+            "physics_max_memory_mb: expected an integer in [16, 1048576], got an integer (8)");
   EXPECT_EQ(error("ground_z: .nan"), "ground_z: expected a finite number, got a number (nan)");
   EXPECT_EQ(configError([] {
               buildFromYaml("objects: {cube: {shape: box, size: [0.1, 0.1, 0.1], density: 0}}");
             }),
-            "objects.cube.density: expected a positive density [kg/m^3] of at most 100000, got 0");
+            "objects.cube.density: expected a density [kg/m^3] in [1, 100000], got 0");
 }
 
 TEST(PhysicsConfig, DescribeShowsOnlyWhatIsSet) {

@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "placement_samplers/config/config_node.hpp"
 #include "placement_samplers/geometry/mesh_loader.hpp"
@@ -33,9 +34,11 @@ struct BuildOptions {
 /// [x, y, z, w], on every kind. URIs are package://, file:// or paths (see resolveUri).
 /// @param options the URDF parameters; @p meshes must resolve URIs as @p options says
 /// @param meshes loads each mesh file once per build
+/// @param warnings receives what was accepted but left out (an MJCF file's missing material)
 /// @throw ConfigError naming the parameter, the object, the file or parameter, and the cause
 ObjectModel parseObject(const std::string& name, const ConfigNode& node,
-                        const BuildOptions& options, MeshLoader& meshes);
+                        const BuildOptions& options, MeshLoader& meshes,
+                        std::vector<std::string>* warnings = nullptr);
 
 /// parseObject with default BuildOptions (no urdf_param, ROS_PACKAGE_PATH, current directory).
 /// @throw ConfigError as above

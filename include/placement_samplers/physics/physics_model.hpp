@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,8 +44,11 @@ struct BodyPose {
 /// its own. MuJoCo collides a mesh by its convex hull (README, "Physics").
 class PhysicsModel {
  public:
-  /// Generates the model's MJCF text and compiles it with MuJoCo.
-  /// @throw RequestError with MuJoCo's reason when it refuses the model (a flat mesh, ...)
+  /// Generates the model's MJCF text and compiles it with MuJoCo. Its contact buffers are
+  /// sized for the bodies resting (PhysicsWorld grows them when a scene needs more).
+  /// @throw RequestError with MuJoCo's reason when it refuses the model (a flat mesh, a body
+  ///        too light, named by its object), or when one simulation's MuJoCo data would take
+  ///        more than settings.maxMemoryMb, with the numbers
   PhysicsModel(const std::vector<PhysicsFixture>& fixtures, const std::vector<PhysicsBody>& bodies,
                const PhysicsSettings& settings);
   ~PhysicsModel();
@@ -57,9 +61,14 @@ class PhysicsModel {
   const std::string& mjcf() const;
   /// Mass of free body @p body as MuJoCo computed it [kg].
   double mass(std::size_t body) const;
+  /// Bytes of a new PhysicsWorld's MuJoCo data (its buffers, arrays and stack).
+  std::uint64_t worldBytes() const;
 
  private:
   friend class PhysicsWorld;
+  /// Throws RequestError when @p bytes of MuJoCo data exceed the settings' maxMemoryMb, or
+  /// when MuJoCo cannot allocate them (@p fitsMujoco false).
+  void checkBytes(std::uint64_t bytes, bool fitsMujoco) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
@@ -69,15 +78,20 @@ enum class PhysicsStatus {
   Stable,    ///< every object moved and turned less than the tolerances, none fell
   Unstable,  ///< some object moved, turned or fell too far
   Diverged,  ///< MuJoCo reset the state (a bad acceleration): no settled poses
-  TimedOut   ///< the deadline passed during the simulation
+  TimedOut,  ///< the deadline passed during the simulation
+  TooLarge   ///< the scene's contacts need larger buffers than the world's maxBytes allow
 };
 
 /// One thread's simulation state of a PhysicsModel (MuJoCo's mjData), reused scene after scene.
 /// Each simulation starts from reset data, so its result depends on the model and the poses
-/// alone, whatever ran before on this thread or on others.
+/// alone, whatever ran before on this thread or on others. A scene with more contacts than
+/// its buffers hold is simulated again with buffers twice as large (kept for the next scenes),
+/// as long as they take at most maxBytes: the result is the one of buffers large enough.
 class PhysicsWorld {
  public:
-  explicit PhysicsWorld(std::shared_ptr<const PhysicsModel> model);
+  /// @param maxBytes the most its MuJoCo data may grow to [bytes]
+  explicit PhysicsWorld(std::shared_ptr<const PhysicsModel> model,
+                        std::uint64_t maxBytes = std::uint64_t{1} << 31);
   ~PhysicsWorld();
   PhysicsWorld(const PhysicsWorld&) = delete;
   PhysicsWorld& operator=(const PhysicsWorld&) = delete;
@@ -90,6 +104,10 @@ class PhysicsWorld {
   /// @throw std::runtime_error when MuJoCo reports an error
   PhysicsStatus simulate(std::vector<BodyPose>& poses, std::vector<PhysicsOutcome>& outcomes,
                          std::optional<std::chrono::steady_clock::time_point> deadline = {});
+
+  std::uint64_t bytes() const;            ///< its MuJoCo data now [bytes]
+  std::uint64_t maxBytes() const;         ///< the most it may take [bytes]
+  std::uint64_t contactCapacity() const;  ///< contacts its buffers hold now
 
  private:
   struct Impl;

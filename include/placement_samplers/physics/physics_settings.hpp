@@ -32,6 +32,9 @@ struct PhysicsSettings {
   std::uint32_t maxDraws = 10;      ///< draws of a scene in all, with retry
   std::optional<double> groundZ;    ///< an infinite plane at this height [m]; unset = none
   double density = 500.0;           ///< of objects that set none [kg/m^3]
+  /// MuJoCo's data of one request's simulations together [MiB]: as many threads simulate as
+  /// fit, and each one's contact buffers grow within its share.
+  std::uint32_t maxMemoryMb = 2048;
 
   /// Steps per scene: seconds / timestep, rounded, at least one.
   std::uint64_t steps() const;
