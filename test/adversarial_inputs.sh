@@ -89,12 +89,14 @@ with open(sys.argv[1], "w") as f:
     f.write("samplers:\n  - {name: S, strategy: dense, objects: ["
             + ", ".join(f"s{i}" for i in range(10))
             + "], region: {shape: polygon, vertices: [" + corners + "]}}\n")
-# free_space: 200 objects of distinct radii, 10,000 keep-out disks.
+# free_space: 200 objects of distinct radii, 10,000 keep-out disks (max_attempts 8: one rejection
+# attempt, so the cells are built for every object and pruned against every zone).
 with open(sys.argv[2], "w") as f:
     f.write("objects:\n")
     f.writelines(f"  o{i}: {{shape: sphere, radius: {0.001 + 0.00001 * i:.6f}}}\n"
                  for i in range(200))
-    f.write("samplers:\n  - name: S\n    strategy: free_space\n    x_range: [-1, 1]\n"
+    f.write("samplers:\n  - name: S\n    strategy: free_space\n    max_attempts: 8\n"
+            "    x_range: [-1, 1]\n"
             "    y_range: [-1, 1]\n    objects: [" + ", ".join(f"o{i}" for i in range(200))
             + "]\n    keep_out:\n")
     f.writelines(f"      - {{shape: disk, centre: [{-0.99 + 1.98 * (k % 100 + 0.5) / 100:.5f}, "
