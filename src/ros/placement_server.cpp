@@ -3,10 +3,6 @@
 #include <ros/package.h>
 #include <tf2_msgs/TFMessage.h>
 
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <sstream>
 
@@ -20,6 +16,7 @@
 #include "placement_samplers/ros/param_reader.hpp"
 #include "placement_samplers/ros/scene_markers.hpp"
 #include "placement_samplers/ros/validation_service.hpp"
+#include "ros/thread_priority.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {
@@ -56,19 +53,6 @@ std::string joined(const std::vector<std::string>& parts) {
     out += (out.empty() ? "" : "; ") + p;
   }
   return out;
-}
-
-/// Lowers the calling thread's priority once (threads it starts inherit it): sampling threads
-/// yield a core at once to the light services' thread and to roscpp's own network threads,
-/// which stay at the process's priority.
-void lowerSamplingThreadPriority() {
-  thread_local bool lowered = false;
-  if (!lowered) {
-    lowered = true;
-    const auto tid = static_cast<id_t>(::syscall(SYS_gettid));
-    const int now = ::getpriority(PRIO_PROCESS, tid);
-    ::setpriority(PRIO_PROCESS, tid, std::min(now + kSamplingNiceness, 19));
-  }
 }
 
 }  // namespace
@@ -147,7 +131,7 @@ std::uint64_t PlacementServer::nextSeed() {
 
 bool PlacementServer::sample(SamplePlacements::Request& request,
                              SamplePlacements::Response& response) {
-  lowerSamplingThreadPriority();
+  lowerThreadPriority();
   // Every error becomes an answer: roscpp would turn an exception into a bare failure.
   try {
     const std::shared_ptr<const SceneGenerator> generator = this->generator();
@@ -228,7 +212,7 @@ void PlacementServer::scheduleTrim(std::uint64_t placements) {
 
 bool PlacementServer::validate(ValidatePlacements::Request& request,
                                ValidatePlacements::Response& response) {
-  lowerSamplingThreadPriority();
+  lowerThreadPriority();
   ros_interface::answerValidation(*generator(), request, response);  // never throws
   // A large request (refused or not) leaves roscpp's copy of it freed but kept by malloc.
   if (request.placements.size() + request.fixtures.size() >= kTrimAfterValidatedPoses) {

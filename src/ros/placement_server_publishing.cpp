@@ -9,6 +9,7 @@
 #include "placement_samplers/ros/conversions.hpp"
 #include "placement_samplers/ros/placement_server.hpp"
 #include "placement_samplers/ros/scene_markers.hpp"
+#include "ros/thread_priority.hpp"
 
 namespace placement_samplers {
 namespace ros_interface {
@@ -155,6 +156,8 @@ void PlacementServer::sendFrames(bool restamp) {
 }
 
 void PlacementServer::publishLoop() {
+  // Rendering a scene competes with the next call, not with ~ping.
+  lowerThreadPriority();
   using Clock = std::chrono::steady_clock;
   Clock::time_point nextTick = Clock::now();
   std::unique_lock<std::mutex> lock(pendingMutex_);
