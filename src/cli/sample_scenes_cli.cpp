@@ -170,6 +170,8 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
   std::string validatePath;
   double heightTolerance = ValidationOptions().heightTolerance;
   std::optional<double> maxSceneSeconds;
+  // Flags that only change how scenes are sampled: --validate reads its poses instead.
+  std::vector<std::string> samplingFlags;
   try {
     for (std::size_t i = 0; i < args.size(); ++i) {
       const std::string& flag = args[i];
@@ -192,6 +194,11 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
                              : "unknown argument " + quoteText(flag));
       }
       const std::string& value = args[++i];
+      if (flag == "--seed" || flag == "--scenes" || flag == "--first-scene" ||
+          flag == "--max-attempts" || flag == "--physics" || flag == "--threads" ||
+          flag == "--max-scene-seconds") {
+        samplingFlags.push_back(flag);
+      }
       if (flag == "--config") {
         configPath = value;
       } else if (flag == "--seed") {
@@ -234,6 +241,12 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
     }
     if (describe && !validatePath.empty()) {
       throw UsageError("--describe and --validate: choose one");
+    }
+    if (!validatePath.empty() && !samplingFlags.empty()) {
+      throw UsageError(samplingFlags.front() +
+                       " changes how scenes are sampled; --validate checks the poses it reads "
+                       "(drop " +
+                       samplingFlags.front() + ")");
     }
     if (!outputPath.empty() &&
         (outputPath.size() < 5 || outputPath.compare(outputPath.size() - 4, 4, ".npz") != 0)) {

@@ -213,6 +213,16 @@ TEST(SampleScenesValidate, OutputIsRefused) {
   r = run({"--config", kDefaultConfig, "--describe", "--validate", "-"});
   EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
             "sample_scenes: --describe and --validate: choose one");
+  // Flags that only change sampling have no effect on --validate: refused, not ignored.
+  for (const char* flag : {"--seed", "--scenes", "--first-scene", "--max-attempts", "--threads",
+                           "--physics", "--max-scene-seconds"}) {
+    r = run({"--config", kDefaultConfig, "--validate", "-", flag, "1"});
+    EXPECT_EQ(r.status, 2) << flag;
+    EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
+              std::string("sample_scenes: ") + flag +
+                  " changes how scenes are sampled; --validate checks the poses it reads (drop " +
+                  flag + ")");
+  }
   r = run({"--config", kDefaultConfig, "--validate", testing::TempDir()});
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind("sample_scenes: --validate ", 0), 0u);
