@@ -201,6 +201,13 @@ void PlacementServer::publishLoop() {
         shown_.poses =
             makeScenePoses(SceneResult(), generator()->config().frameId, ros::Time::now());
         posesPublisher_.publish(shown_.poses);
+        // ~scene too: a late subscriber must not take the old configuration's scene for current.
+        PlacedScene empty;
+        empty.header.frame_id = shown_.poses.header.frame_id;
+        empty.header.stamp = shown_.poses.header.stamp;
+        empty.tf_prefix = generator()->config().tfPrefix.value_or(defaultTfPrefix_);
+        shown_.scene = empty;
+        scenePublisher_.publish(empty);
         if (tfStatic_) {
           tfStaticPublisher_.publish(tf2_msgs::TFMessage());
         }

@@ -240,6 +240,7 @@ TEST_F(SceneLifecycleTest, StaticFramesHoldTheCurrentSceneOnly) {
 // sampling order; latched; neither a dry run nor a failure replaces it; a reload empties it.
 TEST_F(SceneLifecycleTest, PosesCarryTheLatestSceneUntilAReload) {
   Latest<geometry_msgs::PoseArray> poses("/placement_server/poses");
+  Latest<PlacedScene> scene("/placement_server/scene");
   const SamplePlacements srv = call(seeded(61));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
   std::vector<geometry_msgs::Pose> expected;
@@ -266,10 +267,20 @@ TEST_F(SceneLifecycleTest, PosesCarryTheLatestSceneUntilAReload) {
   ASSERT_TRUE(late.waitUntil([](const geometry_msgs::PoseArray&) { return true; }, 10.0));
   EXPECT_EQ(late.get()->poses, expected);
 
+  ASSERT_TRUE(scene.waitUntil([](const PlacedScene& m) { return m.seed == 61; }, 10.0));
+
   EXPECT_TRUE(reload().response.success);
   ASSERT_TRUE(
       poses.waitUntil([](const geometry_msgs::PoseArray& m) { return m.poses.empty(); }, 10.0));
   EXPECT_EQ(poses.get()->header.frame_id, "world");
+  // ~scene is emptied with it: the old configuration's scene is not offered as the current one.
+  ASSERT_TRUE(scene.waitUntil([](const PlacedScene& m) { return m.placements.empty(); }, 10.0));
+  EXPECT_EQ(scene.get()->seed, 0u);
+  EXPECT_EQ(scene.get()->header.frame_id, "world");
+  EXPECT_EQ(scene.get()->tf_prefix, "test/");
+  Latest<PlacedScene> late2("/placement_server/scene");
+  ASSERT_TRUE(late2.waitUntil([](const PlacedScene&) { return true; }, 10.0));
+  EXPECT_TRUE(late2.get()->placements.empty());
 }
 
 TEST_F(SceneLifecycleTest, ReloadSaysWhenThreadsTakeEffect) {
