@@ -160,12 +160,21 @@ void PlacementServer::publishLoop() {
   lowerThreadPriority();
   using Clock = std::chrono::steady_clock;
   Clock::time_point nextTick = Clock::now();
+  Clock::time_point showNotBefore = nextTick;
   std::unique_lock<std::mutex> lock(pendingMutex_);
   for (;;) {
     pendingReady_.wait_until(lock, nextTick,
                              [this] { return stopping_ || pending_ || clearPending_; });
     if (stopping_) {
       return;
+    }
+    // Calls in quick succession: only the latest scene is shown, at most every kShowInterval,
+    // so rendering does not take the cores from the calls (a reload's clearing does not wait).
+    if (pending_ && !clearPending_ && Clock::now() < showNotBefore) {
+      pendingReady_.wait_until(lock, showNotBefore, [this] { return stopping_ || clearPending_; });
+      if (stopping_) {
+        return;
+      }
     }
     std::optional<ShownScene> next = std::move(pending_);
     pending_.reset();
@@ -184,6 +193,7 @@ void PlacementServer::publishLoop() {
     std::optional<Shown> rendered;
     if (next) {
       rendered = render(*next);
+      showNotBefore = Clock::now() + kShowInterval;
     }
     {
       std::lock_guard<std::mutex> publishLock(publishMutex_);

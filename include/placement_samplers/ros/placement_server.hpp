@@ -45,6 +45,10 @@ constexpr int kSamplingNiceness = 10;
 /// A batch whose first this many scenes all failed stops there and answers at once.
 constexpr std::uint64_t kGiveUpProbeScenes = 32;
 
+/// Scenes are shown (frames, markers, ~scene, ~poses rendered) at most this often; a call's scene
+/// that a later call supersedes within it is not shown.
+constexpr std::chrono::milliseconds kShowInterval{20};
+
 /// A validation of this many poses or more gives its memory back to the system afterwards.
 constexpr std::size_t kTrimAfterValidatedPoses = 10000;
 
