@@ -1,6 +1,6 @@
-// libFuzzer target: MJCF text -> MuJoCo's compiler -> sites and collision shapes -> bounds. The
-// text goes through a file of its own (MuJoCo 2.2.2 reads files), in a directory without
-// meshes, so asset references exercise the error paths.
+// libFuzzer target: MJCF text -> our document reader (includes, asset files, limits) ->
+// MuJoCo's compiler -> sites and collision shapes -> bounds. The text goes through a file of its
+// own, in a directory without meshes, so asset references exercise the error paths.
 #include <unistd.h>
 
 #include <cstddef>
