@@ -14,6 +14,14 @@ struct RadiusProbe {
   double bottom;  ///< bottom offset z [m] (negative below the origin)
 };
 
+/// The z half of robosuite's radius test: a candidate at height @p z with bottom offset
+/// @p bottom reaches below the top of an entry at height @p entryZ with top offset @p entryTop
+/// (one-sided, so stacking passes). Also what free_space, the packing bound and the no-room
+/// proof read to know which entries can block an object at all.
+inline bool radiusHeightsOverlap(double z, double bottom, double entryZ, double entryTop) {
+  return z - entryZ <= entryTop - bottom;
+}
+
 /// robosuite's radius test, the one definition every path answers with: the x-y circles
 /// overlap (touching counts) and the candidate's bottom is below the entry's top, i.e.
 /// `z_c - z_e <= top_e - bottom_c` (one-sided, so stacking passes).
@@ -32,7 +40,7 @@ inline bool radiusOverlap(const RadiusProbe& p, double x, double y, double z, do
   const double dx = p.x - x;
   const double dy = p.y - y;
   const double reach = radius + p.radius;
-  return (dx * dx + dy * dy <= reach * reach) & (p.z - z <= top - p.bottom);
+  return (dx * dx + dy * dy <= reach * reach) & radiusHeightsOverlap(p.z, p.bottom, z, top);
 }
 
 }  // namespace detail

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "collision/radius_test.hpp"
+
 namespace placement_samplers::detail {
 namespace {
 
@@ -51,9 +53,8 @@ bool noFreePosition(const std::vector<PlacedEntry>& entries, const ObjectModel& 
                     const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
   std::vector<Disk> disks;
   for (const PlacedEntry& e : entries) {
-    // The z half of robosuite's radius test (radius_test.hpp): only entries at an overlapping
-    // height block the object.
-    if (z - e.position.z() <= e.object->topOffset.z() - object.bottomOffset.z()) {
+    // Only entries at an overlapping height block the object.
+    if (radiusHeightsOverlap(z, object.bottomOffset.z(), e.position.z(), e.object->topOffset.z())) {
       disks.push_back(
           Disk{e.position.head<2>(), e.object->horizontalRadius + object.horizontalRadius});
     }

@@ -5,6 +5,7 @@
 
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/text.hpp"
+#include "collision/radius_test.hpp"
 #include "sampling/free_cells.hpp"
 
 namespace placement_samplers {
@@ -126,7 +127,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     // distances change by at most h over the cell. The disks shrink by a hair, so rounding
     // never drops a free position.
     const auto blocks = [&](const PlacedEntry& e) {
-      return z - e.position.z() <= e.object->topOffset.z() - bottom;  // robosuite's z half
+      return detail::radiusHeightsOverlap(z, bottom, e.position.z(), e.object->topOffset.z());
     };
     const auto disk = [&](const PlacedEntry& e, const Eigen::Vector2d& c, double h) {
       const double reach = radius + e.object->horizontalRadius;

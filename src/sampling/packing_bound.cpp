@@ -6,6 +6,7 @@
 
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/text.hpp"
+#include "collision/radius_test.hpp"
 #include "sampling/polygon.hpp"
 
 namespace placement_samplers {
@@ -38,8 +39,8 @@ std::vector<ObjectPtr> mutuallyTested(const UniformRandomSampler& sampler, bool 
     bool testsAll = true;
     for (const ObjectPtr& earlier : clique) {
       const double ze = sampler.height(*earlier, base, onTop);
-      // The z half of robosuite's radius test (radius_test.hpp) at zero distance.
-      testsAll = testsAll && zc - ze <= earlier->topOffset.z() - candidate->bottomOffset.z();
+      testsAll = testsAll && detail::radiusHeightsOverlap(zc, candidate->bottomOffset.z(), ze,
+                                                          earlier->topOffset.z());
     }
     if (testsAll) {
       clique.push_back(candidate);
