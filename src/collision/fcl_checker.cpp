@@ -117,6 +117,7 @@ struct FclChecker::Impl {
     Impl* impl;
     const Instance* candidate;
     std::ptrdiff_t hit;
+    std::ptrdiff_t support;  ///< the entry the candidate stands on: touching it needs no margin
   };
 
   explicit Impl(double m) : margin(m), threshold(m - kTouchTolerance) {
@@ -199,8 +200,9 @@ struct FclChecker::Impl {
                       aboutWorldZ(orientation * object.initOrientation.conjugate());
   }
 
-  /// True when the two bodies come closer than the margin (penetrate, with a zero margin).
-  bool tooClose(const Body& a, const Body& b) {
+  /// True when the two bodies come closer than the margin (penetrate, with a zero margin);
+  /// @p limit: the signed distance below which they do.
+  bool tooClose(const Body& a, const Body& b, double limit) {
     result.clear();
     fcl::collide(&a, &b, boolRequest, result);
     if (result.isCollision()) {
@@ -212,14 +214,14 @@ struct FclChecker::Impl {
       }
       // Signed distance -depth against margin - tolerance: with a zero margin a contact
       // counts only beyond the tolerance; with a positive one any contact counts.
-      return -depth < threshold;
+      return -depth < limit;
     }
-    if (threshold <= 0.0) {
+    if (limit <= 0.0) {
       return false;
     }
     distance.clear();
     fcl::distance(&a, &b, distanceRequest, distance);
-    return distance.min_distance < threshold;
+    return distance.min_distance < limit;
   }
 
   static bool onPair(fcl_compat::CollisionObject* a, fcl_compat::CollisionObject* b, void* data) {
@@ -235,7 +237,9 @@ struct FclChecker::Impl {
         return false;  // the circles bound both: no point of one comes within the margin
       }
     }
-    if (query.impl->tooClose(mine, other)) {
+    // The surface an object stands on touches it: the margin keeps others away, not it.
+    const double limit = placed.entry == query.support ? -kTouchTolerance : query.impl->threshold;
+    if (query.impl->tooClose(mine, other, limit)) {
       query.hit = placed.entry;
       return true;  // stops the broadphase
     }
@@ -302,7 +306,7 @@ std::ptrdiff_t FclChecker::firstCollision(const std::vector<PlacedEntry>& /*entr
   Impl::ObjectGeometry& g = impl_->geometryOf(*candidate.object);
   Impl::place(g, *candidate.object, g.candidate, candidate.position, candidate.orientation,
               impl_->margin);
-  Impl::Query query{impl_.get(), &g.candidate, kNone};
+  Impl::Query query{impl_.get(), &g.candidate, kNone, candidate.support};
   impl_->collide(g.candidate, query);
   return query.hit;
 }

@@ -350,6 +350,16 @@ void RadiusChecker::indexEntry(std::size_t index) {
 std::ptrdiff_t RadiusChecker::firstCollision(const std::vector<PlacedEntry>& entries,
                                              const Candidate& candidate) {
   const std::size_t n = columns_->size();
+  if (candidate.support >= 0) {
+    // Standing on a surface of its support: robosuite's scan over the others.
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (static_cast<std::ptrdiff_t>(i) != candidate.support &&
+          radiusOverlap(entries[i], candidate)) {
+        return static_cast<std::ptrdiff_t>(i);
+      }
+    }
+    return kNone;
+  }
   if (entries.size() != n) {
     // Entries the checker was not told about: robosuite's scan over them.
     for (std::size_t i = 0; i < entries.size(); ++i) {

@@ -213,10 +213,50 @@ class Builder {
       }
       where->fail(message);
     }
+    if (p.surface) {
+      bindSurfaces(*sampler, *p.surface, objects, s.at("region"));
+    }
     for (const ObjectPtr& o : objects) {
       available_.insert(o->name);
     }
     return sampler;
+  }
+
+  /// Finds the surfaces of a surface region's target when the configuration holds it: a
+  /// configured fixture, or an object an earlier sampler places. Any other name must be a
+  /// request's fixture (SceneGenerator::prepare() checks it).
+  void bindSurfaces(UniformRandomSampler& sampler, const SurfaceRegion& region,
+                    const std::vector<ObjectPtr>& objects, const ConfigNode& node) {
+    const ConfigNode& of = node.at("of");
+    for (const ObjectPtr& o : objects) {
+      if (o->name == region.of) {
+        of.fail("region.of " + quoteText(region.of) + " is an object of sampler " +
+                quoteText(sampler.name()) +
+                " itself: name a fixture or an object an earlier sampler places");
+      }
+    }
+    try {
+      for (const FixtureSpec& f : config_.fixtures) {
+        if (f.name == region.of) {
+          sampler.bindSurfaces(*f.object, f.position, f.orientation, false);
+          return;
+        }
+      }
+      if (const ObjectModel* object = config_.findObject(region.of)) {
+        if (available_.count(region.of) == 0) {
+          of.fail("region.of " + quoteText(region.of) + " of sampler " + quoteText(sampler.name()) +
+                  " is an object that no earlier sampler places: it is not in the scene yet");
+        }
+        sampler.bindSurfaces(*object, Eigen::Vector3d::Zero(), object->initOrientation, true);
+        return;
+      }
+    } catch (const ConfigError& e) {
+      node.fail(e.what());
+    }
+    config_.warnings.push_back("sampler " + quoteText(sampler.name()) + ": region.of " +
+                               quoteText(region.of) +
+                               " is neither a configured fixture nor an object: every request "
+                               "must give a fixture of that name");
   }
 
   const ConfigNode& root_;

@@ -1,6 +1,9 @@
 #include "config/region_config.hpp"
 
 #include "config/builder_parts.hpp"
+#include <cmath>
+
+#include "placement_samplers/limits.hpp"
 #include "placement_samplers/text.hpp"
 
 namespace placement_samplers::detail {
@@ -36,9 +39,9 @@ Eigen::Vector2d centerOf(const ConfigNode& node) {
 
 RegionShape parseShape(const ConfigNode& node, bool keepOut) {
   if (!node.isMap()) {
-    node.fail(
-        "expected a shape: a map with shape: rectangle, rotated_rectangle, disk, annulus or "
-        "polygon and its sizes");
+    node.fail(std::string("expected a shape: a map with shape: rectangle, rotated_rectangle, disk, "
+                          "annulus") +
+              (keepOut ? " or polygon" : ", polygon or surface") + " and its sizes");
   }
   const ConfigNode& kind = node.at("shape");
   const std::string& name = kind.asString();
@@ -78,8 +81,8 @@ RegionShape parseShape(const ConfigNode& node, bool keepOut) {
     }
     s = RegionShape::polygon(std::move(vertices));
   } else {
-    kind.fail("expected rectangle, rotated_rectangle, disk, annulus or polygon, got " +
-              quoteText(name));
+    kind.fail(std::string("expected rectangle, rotated_rectangle, disk, annulus") +
+              (keepOut ? " or polygon" : ", polygon or surface") + ", got " + quoteText(name));
   }
   if (const auto problem = findShapeProblem(s)) {
     const ConfigNode* where = problem->key == "center" ? centerNode(node) : node.get(problem->key);
@@ -91,6 +94,51 @@ RegionShape parseShape(const ConfigNode& node, bool keepOut) {
 }  // namespace
 
 RegionShape parseRegionShape(const ConfigNode& node) { return parseShape(node, false); }
+
+bool isSurfaceRegion(const ConfigNode& node) {
+  const ConfigNode* kind = node.isMap() ? node.get("shape") : nullptr;
+  return kind != nullptr && kind->isString() && kind->asString() == "surface";
+}
+
+SurfaceRegion parseSurfaceRegion(const ConfigNode& node) {
+  node.checkKeys({"shape", "of", "select", "min_area", "normal_tolerance", "margin"});
+  SurfaceRegion r;
+  const ConfigNode& of = node.at("of");
+  r.of = of.asString();
+  if (r.of.empty()) {
+    of.fail("expected the name of a fixture or of an object placed by an earlier sampler");
+  }
+  if (const ConfigNode* n = node.get("select")) {
+    if (n->isList()) {
+      r.select = SurfaceRegion::Select::Indices;
+      for (const ConfigNode& i : n->elements()) {
+        r.indices.push_back(static_cast<std::size_t>(i.asInt(0, 1000000)));
+      }
+      if (r.indices.empty()) {
+        n->fail("expected all, top or a non-empty list of surface indices");
+      }
+    } else if (n->isString() && n->asString() == "all") {
+      r.select = SurfaceRegion::Select::All;
+    } else if (n->isString() && n->asString() == "top") {
+      r.select = SurfaceRegion::Select::Top;
+    } else {
+      n->fail("expected all, top or a list of surface indices (as --describe lists them)");
+    }
+  }
+  const auto number = [&](const char* key, double& value, double max, const char* what) {
+    if (const ConfigNode* n = node.get(key)) {
+      value = n->asDouble();
+      if (!std::isfinite(value) || value < 0.0 || value >= max) {
+        n->fail(what);
+      }
+    }
+  };
+  number("min_area", r.minArea, limits::kCoordinate * limits::kCoordinate,
+         "expected an area >= 0 [m^2]");
+  number("normal_tolerance", r.normalTolerance, M_PI_2, "expected an angle in [0, pi/2) [rad]");
+  number("margin", r.margin, limits::kCoordinate, "expected a distance >= 0 [m]");
+  return r;
+}
 
 std::vector<KeepOutZone> parseKeepOut(const ConfigNode& node) {
   std::vector<KeepOutZone> zones;

@@ -22,7 +22,11 @@ UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAt
         s.at(key).fail(std::string("region replaces ") + key + ": give one or the other");
       }
     }
-    p.region = parseRegionShape(*n);
+    if (isSurfaceRegion(*n)) {
+      p.surface = parseSurfaceRegion(*n);
+    } else {
+      p.region = parseRegionShape(*n);
+    }
   }
   if (const ConfigNode* n = s.get("keep_out")) {
     p.keepOut = parseKeepOut(*n);

@@ -61,7 +61,9 @@ std::optional<std::string> findOverfullSampler(const PlacementSampler& root,
   root.forEachUniform(
       reference, onTop, [&](const UniformRandomSampler& s, const Reference&, bool samplerOnTop) {
         const UniformSamplerParams& p = s.params();
-        if (found || p.hides || !p.ensureValidPlacement || !p.ensureObjectBoundaryInRange) {
+        // A surface region's area is known per scene only (its target may move).
+        if (found || p.hides || !p.ensureValidPlacement || !p.ensureObjectBoundaryInRange ||
+            p.surface) {
           return;
         }
         const std::vector<ObjectPtr> objects = mutuallyTested(s, samplerOnTop);

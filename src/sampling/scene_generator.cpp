@@ -19,6 +19,7 @@
 #include "placement_samplers/geometry/unit_quaternion.hpp"
 #include "placement_samplers/sampling/packing_bound.hpp"
 #include "sampling/parallel.hpp"
+#include "sampling/request_surfaces.hpp"
 #include "sampling/scene_worker.hpp"
 
 namespace placement_samplers {
@@ -215,6 +216,7 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
                                      prepared.collisionCheck)) {
     throw RequestError(*why);
   }
+  detail::prepareRequestSurfaces(prepared);
   prepared.physics = config.physics;
   prepared.physics.mode = request.physics.value_or(config.physics.mode);
   if (prepared.physics.mode != PhysicsMode::None) {

@@ -27,6 +27,7 @@ class SceneGenerator::Worker {
         checker_(makeCollisionChecker(request.collisionCheck, margin)),
         context_(engine_, *checker_, request.maxAttempts),
         objects_(request.sampler->objects().size()) {
+    context_.setRequestSurfaces(&request.surfaces);
     if (request.physicsModel) {
       // Compiles the model once, whichever worker comes first.
       physics_ = std::make_unique<PhysicsStep>(

@@ -1,5 +1,6 @@
 // The uniform sampler's region shapes and keep-out zones, apart from robosuite's rectangle
 // (uniform_random_sampler.cpp), whose loop stays as it was.
+#include <cmath>
 #include <sstream>
 
 #include "placement_samplers/errors.hpp"
@@ -21,6 +22,26 @@ void UniformRandomSampler::checkShapes(const std::string& where) {
       params_.xRange = params_.region->xRange;
       params_.yRange = params_.region->yRange;
       params_.region.reset();
+    }
+  }
+  if (params_.surface) {
+    if (params_.region || params_.xRange != Eigen::Vector2d::Zero() ||
+        params_.yRange != Eigen::Vector2d::Zero()) {
+      throw ConfigError(where +
+                        "region (surface) replaces x_range and y_range: give one or the other");
+    }
+    if (params_.strategy != UniformSamplerParams::Strategy::Rejection) {
+      throw ConfigError(where + "region (surface) takes strategy rejection only");
+    }
+    const SurfaceRegion& s = *params_.surface;
+    if (s.of.empty()) {
+      throw ConfigError(where + "region.of must name a fixture or an object placed earlier");
+    }
+    const auto bad = [](double v) { return !std::isfinite(v) || v < 0.0; };
+    if (bad(s.minArea) || bad(s.margin) || bad(s.normalTolerance) || s.normalTolerance >= M_PI_2) {
+      throw ConfigError(where +
+                        "region: min_area [m^2] and margin [m] must be finite and >= 0, "
+                        "normal_tolerance in [0, pi/2) [rad]");
     }
   }
   for (std::size_t i = 0; i < params_.keepOut.size(); ++i) {

@@ -121,7 +121,7 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
                         " is already in this sampler");
     }
     Entry entry{object, effectiveRange(*object, 0), effectiveRange(*object, 1), nullptr};
-    for (int axis = 0; axis < 2 && !params_.region; ++axis) {
+    for (int axis = 0; axis < 2 && !params_.region && !params_.surface; ++axis) {
       const Eigen::Vector2d& r = axis == 0 ? entry.x : entry.y;
       if (r[0] > r[1]) {
         const char* key = axis == 0 ? "x_range" : "y_range";
@@ -135,7 +135,20 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
         throw ConfigError(out.str());
       }
     }
-    if (params_.region || !params_.keepOut.empty()) {
+    if (params_.surface) {
+      if (boundSurfaces_) {
+        SurfaceDraw::NoFit why;
+        std::optional<SurfaceDraw> draw =
+            SurfaceDraw::make(*boundSurfaces_, surfaceInset(*object),
+                              object->topOffset.z() - object->bottomOffset.z(), &why);
+        if (!draw) {
+          throw ConfigError(noFitMessage(*object, why));
+        }
+        if (!boundToObject_) {
+          entry.surfaceDraw = std::make_shared<const SurfaceDraw>(std::move(*draw));
+        }
+      }
+    } else if (params_.region || !params_.keepOut.empty()) {
       entry.draw = regionDraw(*object);
     }
     entries_.push_back(entry);
@@ -224,6 +237,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
 
 bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
                                     const Eigen::Vector3d& base, bool onTop) const {
+  if (params_.surface) {
+    return placeOnSurface(context, entry, base);
+  }
   if (entry.draw) {
     return placeOneShaped(context, entry, base, onTop);
   }

@@ -37,6 +37,9 @@ struct Candidate {
   const ObjectModel* object = nullptr;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< [m]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  /// The entry the candidate stands on (a surface region's target), which the radius test
+  /// skips (its circle would cover the surface) and the exact tests check; -1: none.
+  std::ptrdiff_t support = -1;
 };
 
 /// Decides whether a candidate collides with what is placed. One implementation per test

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -10,6 +11,7 @@
 #include "placement_samplers/collision/collision_checker.hpp"
 #include "placement_samplers/sampling/placement.hpp"
 #include "placement_samplers/sampling/random.hpp"
+#include "placement_samplers/sampling/surface_region.hpp"
 
 namespace placement_samplers {
 
@@ -92,6 +94,16 @@ class SampleContext {
     return hiddenEngine_;
   }
   std::uint32_t maxAttempts() const { return maxAttempts_; }
+  /// The surfaces of the request's fixtures that surface regions stand on (or nullptr).
+  void setRequestSurfaces(const RequestSurfaces* surfaces) { requestSurfaces_ = surfaces; }
+  const RequestSurfaces* requestSurfaces() const { return requestSurfaces_; }
+  /// This thread's draws on surfaces known only in a scene; kept across scenes.
+  SurfaceDrawCache& surfaceCache() {
+    if (!surfaceCache_) {
+      surfaceCache_ = std::make_unique<SurfaceDrawCache>();
+    }
+    return *surfaceCache_;
+  }
   const std::vector<PlacedEntry>& entries() const { return entries_; }
   const std::vector<ObjectPlacement>& placements() const { return placements_; }
   std::vector<ObjectPlacement>& placements() { return placements_; }
@@ -105,6 +117,8 @@ class SampleContext {
   bool hiddenSeeded_ = false;
   CollisionChecker& checker_;
   std::uint32_t maxAttempts_;
+  const RequestSurfaces* requestSurfaces_ = nullptr;
+  std::unique_ptr<SurfaceDrawCache> surfaceCache_;
   std::vector<PlacedEntry> entries_;
   std::vector<ObjectPlacement> placements_;
   std::vector<std::uint32_t> blockerCounts_;

@@ -59,6 +59,8 @@ struct PreparedRequest {
   std::vector<std::string> notes;
   /// The configuration's physics settings with the request's mode.
   PhysicsSettings physics;
+  /// The surfaces of this request's fixtures that surface regions stand on.
+  RequestSurfaces surfaces;
   /// The request's MuJoCo model, built on first use (none when physics.mode is none) and
   /// shared by the threads that sample it.
   std::shared_ptr<ScenePhysics> physicsModel;

@@ -9,6 +9,7 @@
 
 #include "placement_samplers/sampling/placement_sampler.hpp"
 #include "placement_samplers/sampling/region.hpp"
+#include "placement_samplers/sampling/surface_region.hpp"
 
 namespace placement_samplers {
 
@@ -40,6 +41,9 @@ struct UniformSamplerParams {
   /// Another shape instead of xRange/yRange (which stay zero), around the reference; a
   /// rectangle is turned into xRange/yRange.
   std::optional<RegionShape> region;
+  /// The support surfaces of a fixture or earlier object instead of xRange/yRange (which stay
+  /// zero); positions in the world frame (README, "Support surfaces").
+  std::optional<SurfaceRegion> surface;
   std::vector<KeepOutZone> keepOut;  ///< where no placed object may be
   /// rejection: robosuite's blind attempts; free_space: draws only from grid cells not yet
   /// known to be blocked (the same distribution, uniform over the free positions); dense: the
@@ -87,6 +91,28 @@ class UniformRandomSampler : public PlacementSampler {
   /// The x or y interval the centre of @p object is drawn from, relative to the reference [m].
   Eigen::Vector2d effectiveRange(const ObjectModel& object, int axis) const;
 
+  /// Binds a surface region to the target the configuration knows (surface_placement.cpp): a
+  /// configured fixture at its pose (its surfaces in the world, drawn from for every call), or
+  /// with @p objectFrame an object an earlier sampler places (its surfaces at its origin under
+  /// its initial orientation, moved to where it is placed in each scene).
+  /// @throw ConfigError when the target has no surface (selectSurfaces()) or some object of
+  ///        this sampler fits on none of the selected ones
+  void bindSurfaces(const ObjectModel& target, const Eigen::Vector3d& position,
+                    const Eigen::Quaterniond& orientation, bool objectFrame);
+  /// The surface region's selected surfaces on @p target (its `of`, found in a scene) in the
+  /// world: bound ones, the request's (@p request, found by SceneGenerator::prepare()), or
+  /// found now.
+  /// @throw ConfigError as selectSurfaces()
+  std::vector<SupportSurface> surfacesOn(const PlacedEntry& target,
+                                         const RequestSurfaces* request) const;
+  /// True when bindSurfaces() found the surface region's surfaces.
+  bool surfacesBound() const { return boundSurfaces_ != nullptr; }
+  /// The inset a surface region keeps @p object's centre from the surfaces' edges [m]: its
+  /// horizontal radius under ensure_object_boundary_in_range, plus the region's margin.
+  double surfaceInset(const ObjectModel& object) const;
+  /// Why @p object fits on none of @p surfaces of the surface region's target.
+  std::string noFitMessage(const ObjectModel& object, const SurfaceDraw::NoFit& why) const;
+
  private:
   struct Entry {
     ObjectPtr object;
@@ -94,6 +120,8 @@ class UniformRandomSampler : public PlacementSampler {
     Eigen::Vector2d y;  ///< effective y interval [m]
     /// The inset region's draws when there is a region shape or a keep-out zone (else x, y).
     std::shared_ptr<const RegionDraw> draw;
+    /// A surface region bound to a configured fixture: the draws on its surfaces.
+    std::shared_ptr<const SurfaceDraw> surfaceDraw;
   };
 
   Eigen::Quaterniond sampleOrientation(Engine& engine, const ObjectModel& object) const;
@@ -110,6 +138,13 @@ class UniformRandomSampler : public PlacementSampler {
   /// placeOne() for a region shape or keep-out zones (shaped_placement.cpp).
   bool placeOneShaped(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                       bool onTop) const;
+  /// placeOne() for a surface region (surface_placement.cpp).
+  bool placeOnSurface(SampleContext& context, const Entry& entry,
+                      const Eigen::Vector3d& base) const;
+  /// The draws of @p entry's object on @p target's surfaces, made once per thread and target
+  /// pose; nullptr and @p error when there are none.
+  const SurfaceDraw* surfaceDrawOn(SampleContext& context, const Entry& entry,
+                                   const PlacedEntry& target, std::string& error) const;
   /// sample() with strategy dense (dense_placement.cpp).
   bool sampleDense(SampleContext& context, const Eigen::Vector3d& base, bool onTop) const;
   /// sample() with strategy free_space (free_space_placement.cpp).
@@ -135,6 +170,9 @@ class UniformRandomSampler : public PlacementSampler {
   Eigen::Vector2d boundsLo_ = Eigen::Vector2d::Zero();  ///< the region's bounds [m]
   Eigen::Vector2d boundsHi_ = Eigen::Vector2d::Zero();
   std::vector<Entry> entries_;
+  /// A surface region's target's selected surfaces, when bindSurfaces() found them.
+  std::shared_ptr<const std::vector<SupportSurface>> boundSurfaces_;
+  bool boundToObject_ = false;  ///< boundSurfaces_ are at the object's origin
 };
 
 }  // namespace placement_samplers
