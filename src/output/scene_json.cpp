@@ -8,33 +8,15 @@
 #include "placement_samplers/sampling/sequential_composite_sampler.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/text.hpp"
+#include "output/json_numbers.hpp"
+#include "output/surface_json.hpp"
 
 namespace placement_samplers {
 namespace {
 
-/// Shortest form that reads back as the same double (std::to_chars without a format).
-void appendNumber(std::string& out, double v) {
-  char buffer[32];
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v);
-  out.append(buffer, r.ptr);
-}
-
-void appendInteger(std::string& out, std::uint64_t v) {
-  char buffer[24];
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v);
-  out.append(buffer, r.ptr);
-}
-
-void appendVector(std::string& out, const double* values, int count) {
-  out += '[';
-  for (int k = 0; k < count; ++k) {
-    if (k > 0) {
-      out += ", ";
-    }
-    appendNumber(out, values[k]);
-  }
-  out += ']';
-}
+using detail::appendInteger;
+using detail::appendNumber;
+using detail::appendVector;
 
 void appendBounds(std::string& out, const ObjectModel& object) {
   out += "\"horizontal_radius\": ";
@@ -172,6 +154,10 @@ void appendUniform(std::string& out, const UniformRandomSampler& sampler) {
   if (p.region) {
     out += ", \"region\": ";
     appendShape(out, *p.region, nullptr);
+  }
+  if (p.surface) {
+    out += ", \"region\": ";
+    detail::appendSurfaceRegion(out, sampler);
   }
   if (!p.keepOut.empty()) {
     out += ", \"keep_out\": [";

@@ -1,5 +1,6 @@
 #include "placement_samplers/validation/scene_validator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -136,6 +137,8 @@ class Validator {
           "object " + quoteText(object.name) + ": reference " + quoteText(reference.name) +
               " of sampler " + quoteText(s) +
               " is neither a fixture nor an object placed before it");
+    } else if (params.surface) {
+      checkSurface(verdict, sampler, object, *base, candidate);
     } else {
       const double outside = distanceOutsideRegion(sampler, object, *base, pose.position);
       if (outside > options_.regionTolerance) {
@@ -159,6 +162,70 @@ class Validator {
       }
     }
     context_.addPlacement(s, candidate, 1, params.hides);
+  }
+
+  /// A surface region's checks of @p candidate: on a selected surface that the object fits
+  /// under (OUTSIDE_REGION with the distance, keep-out zones too), at its height (HEIGHT);
+  /// the target becomes the candidate's support, which the radius test skips.
+  void checkSurface(ObjectVerdict& verdict, const UniformRandomSampler& sampler,
+                    const ObjectModel& object, const Eigen::Vector3d& base, Candidate& candidate) {
+    const std::string& s = sampler.name();
+    const SurfaceRegion& region = *sampler.params().surface;
+    const PlacedEntry* target = context_.find(region.of);
+    if (target == nullptr) {
+      add(verdict, Violation::Kind::ReferenceMissing, s, region.of, 0.0,
+          "object " + quoteText(object.name) + ": region.of " + quoteText(region.of) +
+              " of sampler " + quoteText(s) +
+              " is neither a fixture nor an object placed before it");
+      return;
+    }
+    candidate.support = target - context_.entries().data();
+    std::vector<SupportSurface> surfaces;
+    try {
+      surfaces = sampler.surfacesOn(*target, &request_.surfaces);
+    } catch (const ConfigError& e) {
+      add(verdict, Violation::Kind::OutsideRegion, s, region.of, 0.0,
+          "object " + quoteText(object.name) + ": sampler " + quoteText(s) + ": " + e.what());
+      return;
+    }
+    const double height = object.topOffset.z() - object.bottomOffset.z();
+    std::vector<SupportSurface> fitting;
+    for (SupportSurface& surface : surfaces) {
+      if (height <= surface.clearance) {
+        fitting.push_back(std::move(surface));
+      }
+    }
+    if (fitting.empty()) {
+      add(verdict, Violation::Kind::OutsideRegion, s, region.of, 0.0,
+          "object " + quoteText(object.name) + " fits on no selected surface of " +
+              quoteText(region.of) + " (sampler " + quoteText(s) + ")");
+      return;
+    }
+    const Eigen::Vector3d& p = candidate.position;
+    std::size_t nearest = 0;
+    double outside =
+        distanceToSurfaces(fitting, sampler.surfaceInset(object), p.head<2>(), nearest);
+    const double margin =
+        sampler.params().ensureObjectBoundaryInRange ? object.horizontalRadius : 0.0;
+    for (const KeepOutZone& zone : sampler.params().keepOut) {
+      const Eigen::Vector2d q =
+          zone.world ? Eigen::Vector2d(p.head<2>()) : Eigen::Vector2d((p - base).head<2>());
+      outside = std::max(outside, shapeDepth(zone.shape, q) + margin);
+    }
+    if (outside > options_.regionTolerance) {
+      add(verdict, Violation::Kind::OutsideRegion, s, "", outside,
+          "object " + quoteText(object.name) + " is outside the surfaces of " +
+              quoteText(region.of) + " that sampler " + quoteText(s) + " draws on by " +
+              metres(outside));
+    }
+    const double z = fitting[nearest].z + sampler.params().zOffset - object.bottomOffset.z();
+    const double off = std::abs(p.z() - z);
+    if (!(off <= options_.heightTolerance)) {
+      add(verdict, Violation::Kind::Height, s, "", off,
+          "object " + quoteText(object.name) + " is at z " + metres(p.z()) +
+              ", off the height of the surface of " + quoteText(region.of) + " it is on (" +
+              metres(z) + ") by " + metres(off));
+    }
   }
 
   /// The fixtures and earlier objects that @p candidate overlaps (@p hit is one of them, the
@@ -232,9 +299,16 @@ class Validator {
       pairObjects_ = {entry.object, candidate.object};
     }
     one[0] = entry;
+    // The candidate's support is the one entry here when it is this one.
+    Candidate pair = candidate;
+    pair.support =
+        candidate.support >= 0 &&
+                &entry == &context_.entries()[static_cast<std::size_t>(candidate.support)]
+            ? 0
+            : -1;
     pairChecker_->clear();
     pairChecker_->added(one, 0);
-    return pairChecker_->firstCollision(one, candidate) != CollisionChecker::kNone;
+    return pairChecker_->firstCollision(one, pair) != CollisionChecker::kNone;
   }
 
   const PreparedRequest& request_;

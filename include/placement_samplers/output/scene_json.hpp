@@ -26,7 +26,8 @@ void appendSceneJson(std::string& out, const SceneResult& scene);
 /// {"type": "uniform", "name", "objects", "x_range", "y_range", "rotation" (null, an angle or
 /// [min, max] [rad]), "rotation_axis", "ensure_object_boundary_in_range",
 /// "ensure_valid_placement", "reference_pos", "z_offset", "max_attempts", "region" and
-/// "keep_out" when set (shapes as configured), "hides"}; sample_args
+/// "keep_out" when set (shapes as configured; a surface region with the surfaces found, each
+/// with its "index", "z", "area", "clearance" and "vertices"), "hides"}; sample_args
 /// hold "reference" (a name or [x, y, z]) and "on_top" when set.
 std::string configToJson(const SceneConfig& config);
 

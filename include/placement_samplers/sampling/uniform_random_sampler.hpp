@@ -107,6 +107,10 @@ class UniformRandomSampler : public PlacementSampler {
                                          const RequestSurfaces* request) const;
   /// True when bindSurfaces() found the surface region's surfaces.
   bool surfacesBound() const { return boundSurfaces_ != nullptr; }
+  /// The surfaces bindSurfaces() found (nullptr: none), at the object's origin when
+  /// surfacesBoundToObject().
+  const std::vector<SupportSurface>* boundSurfaces() const { return boundSurfaces_.get(); }
+  bool surfacesBoundToObject() const { return boundToObject_; }
   /// The inset a surface region keeps @p object's centre from the surfaces' edges [m]: its
   /// horizontal radius under ensure_object_boundary_in_range, plus the region's margin.
   double surfaceInset(const ObjectModel& object) const;
