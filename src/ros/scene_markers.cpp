@@ -126,12 +126,19 @@ class MarkerBuilder {
 
   /// Any other region shape, green, or a keep-out zone, red (namespace "keep_out"), as
   /// triangles 1 mm above the regions so a zone shows over its sampler's region.
+  /// A support surface is blue (namespace "surfaces"), 2 mm above the board it lies on, with
+  /// its label (index and clearance).
   void shapeRegion(const SamplerRegion& region) {
-    const Eigen::Vector3d lift(0.0, 0.0, region.keepOut ? 0.001 : 0.0);
+    const Eigen::Vector3d lift(0.0, 0.0, region.surface ? 0.002 : region.keepOut ? 0.001 : 0.0);
+    const char* ns = region.surface ? "surfaces" : region.keepOut ? "keep_out" : "regions";
+    const std_msgs::ColorRGBA c = region.surface   ? colour(0.2f, 0.5f, 1.0f, 0.35f)
+                                  : region.keepOut ? colour(0.9f, 0.15f, 0.15f, 0.35f)
+                                                   : colour(0.2f, 0.9f, 0.2f, 0.25f);
+    if (!region.label.empty()) {
+      label(region.label, region.centre + lift, 0.0, colour(0.6f, 0.8f, 1.0f, 0.9f));
+    }
     Marker& m =
-        add(region.keepOut ? "keep_out" : "regions", Marker::TRIANGLE_LIST,
-            Eigen::Isometry3d::Identity(), Eigen::Vector3d::Ones(),
-            region.keepOut ? colour(0.9f, 0.15f, 0.15f, 0.35f) : colour(0.2f, 0.9f, 0.2f, 0.25f));
+        add(ns, Marker::TRIANGLE_LIST, Eigen::Isometry3d::Identity(), Eigen::Vector3d::Ones(), c);
     m.points.reserve(region.triangles.size());
     for (const Eigen::Vector3d& v : region.triangles) {
       geometry_msgs::Point p;

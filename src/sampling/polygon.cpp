@@ -179,4 +179,74 @@ std::vector<Eigen::Vector2d> insetConvex(const std::vector<Eigen::Vector2d>& ccw
   return poly;
 }
 
+std::vector<Eigen::Vector2d> trapezoidTriangles(
+    const std::vector<Eigen::Vector2d>& outer,
+    const std::vector<std::vector<Eigen::Vector2d>>& holes) {
+  struct Edge {
+    Eigen::Vector2d lo;  // the end with the smaller y
+    Eigen::Vector2d hi;
+    double xAt(double y) const {
+      const double t = (y - lo.y()) / (hi.y() - lo.y());
+      return lo.x() + std::clamp(t, 0.0, 1.0) * (hi.x() - lo.x());
+    }
+  };
+  std::vector<Edge> edges;
+  std::vector<double> ys;
+  const auto addRing = [&](const std::vector<Eigen::Vector2d>& ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Eigen::Vector2d& a = ring[i];
+      const Eigen::Vector2d& b = ring[(i + 1) % ring.size()];
+      ys.push_back(a.y());
+      if (a.y() != b.y()) {  // horizontal edges bound no slab
+        edges.push_back(a.y() < b.y() ? Edge{a, b} : Edge{b, a});
+      }
+    }
+  };
+  addRing(outer);
+  for (const std::vector<Eigen::Vector2d>& hole : holes) {
+    addRing(hole);
+  }
+  std::sort(ys.begin(), ys.end());
+  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& a, const Edge& b) { return a.lo.y() < b.lo.y(); });
+  std::vector<Eigen::Vector2d> out;
+  std::vector<const Edge*> active;
+  std::vector<std::pair<double, const Edge*>> crossing;
+  std::size_t next = 0;
+  for (std::size_t k = 0; k + 1 < ys.size(); ++k) {
+    const double y0 = ys[k];
+    const double y1 = ys[k + 1];
+    const double mid = 0.5 * (y0 + y1);
+    while (next < edges.size() && edges[next].lo.y() < mid) {
+      active.push_back(&edges[next++]);
+    }
+    active.erase(std::remove_if(active.begin(), active.end(),
+                                [&](const Edge* e) { return e->hi.y() <= mid; }),
+                 active.end());
+    crossing.clear();
+    for (const Edge* e : active) {
+      crossing.emplace_back(e->xAt(mid), e);
+    }
+    std::sort(crossing.begin(), crossing.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    // Even-odd: inside between the first and second crossing, the third and fourth, ...
+    for (std::size_t i = 0; i + 1 < crossing.size(); i += 2) {
+      const Edge& l = *crossing[i].second;
+      const Edge& r = *crossing[i + 1].second;
+      const Eigen::Vector2d a(l.xAt(y0), y0);
+      const Eigen::Vector2d b(r.xAt(y0), y0);
+      const Eigen::Vector2d c(r.xAt(y1), y1);
+      const Eigen::Vector2d d(l.xAt(y1), y1);
+      if (b.x() > a.x()) {
+        out.insert(out.end(), {a, b, c});
+      }
+      if (c.x() > d.x()) {
+        out.insert(out.end(), {a, c, d});
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace placement_samplers::detail

@@ -39,4 +39,11 @@ std::vector<Eigen::Vector2d> triangulate(const std::vector<Eigen::Vector2d>& ccw
 /// (empty when nothing is left).
 std::vector<Eigen::Vector2d> insetConvex(const std::vector<Eigen::Vector2d>& ccw, double margin);
 
+/// Triangles (three corners each, counter-clockwise) that cover a polygon with holes exactly:
+/// the trapezoids between consecutive vertex heights (y), each cut in two. Any winding; the
+/// rings must not cross. Degenerate trapezoids are left out.
+std::vector<Eigen::Vector2d> trapezoidTriangles(
+    const std::vector<Eigen::Vector2d>& outer,
+    const std::vector<std::vector<Eigen::Vector2d>>& holes);
+
 }  // namespace placement_samplers::detail

@@ -1,9 +1,12 @@
 #include "placement_samplers/sampling/sampler_regions.hpp"
 
+#include <cmath>
 #include <optional>
+#include <sstream>
 
 #include "placement_samplers/sampling/region.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "sampling/polygon.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -42,6 +45,9 @@ struct Walker {
       return;
     }
     const UniformSamplerParams& p = uniform->params();
+    if (p.surface) {
+      surfaces(*uniform);
+    }
     SamplerRegion region;
     region.sampler = uniform->name();
     region.centre = *b + Eigen::Vector3d(0.5 * (p.xRange[0] + p.xRange[1]),
@@ -51,7 +57,9 @@ struct Walker {
       region.centre = *b + Eigen::Vector3d(0.0, 0.0, p.zOffset);
       region.triangles = lift(shapeTriangles(*p.region), region.centre);
     }
-    regions.push_back(region);
+    if (!p.surface) {
+      regions.push_back(region);
+    }
     for (const KeepOutZone& zone : p.keepOut) {
       SamplerRegion keepOut;
       keepOut.sampler = uniform->name();
@@ -62,6 +70,51 @@ struct Walker {
       }
       keepOut.triangles = lift(shapeTriangles(zone.shape), keepOut.centre);
       regions.push_back(keepOut);
+    }
+  }
+
+  /// The support surfaces a surface region draws on in this scene, one region each.
+  void surfaces(const UniformRandomSampler& sampler) {
+    const std::string& of = sampler.params().surface->of;
+    const auto [position, object] = find(of);
+    if (position == nullptr) {
+      return;
+    }
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+    for (const FixtureSpec& f : request.fixtures) {
+      orientation = f.name == of ? f.orientation : orientation;
+    }
+    for (const ObjectPlacement& placed : scene.placements) {
+      orientation = placed.name == of ? placed.orientation : orientation;
+    }
+    std::vector<SupportSurface> found;
+    try {
+      found = sampler.surfacesOn(PlacedEntry(of, object, *position, orientation, false),
+                                 &request.surfaces);
+    } catch (const std::exception&) {
+      return;  // the scene failed there; its message says why
+    }
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      const SupportSurface& s = found[i];
+      SamplerRegion region;
+      region.sampler = sampler.name();
+      region.surface = true;
+      Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+      for (const Eigen::Vector2d& v : s.outer) {
+        sum += v;
+      }
+      region.centre = Eigen::Vector3d(0.0, 0.0, s.z);
+      region.triangles = lift(detail::trapezoidTriangles(s.outer, s.holes), region.centre);
+      region.centre.head<2>() = sum / static_cast<double>(std::max<std::size_t>(1, s.outer.size()));
+      std::ostringstream label;
+      label << sampler.name() << ": surface " << i << ", clearance ";
+      if (std::isfinite(s.clearance)) {
+        label << s.clearance << " m";
+      } else {
+        label << "unbounded";
+      }
+      region.label = label.str();
+      regions.push_back(std::move(region));
     }
   }
 

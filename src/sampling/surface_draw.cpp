@@ -83,13 +83,16 @@ std::optional<SurfaceDraw> SurfaceDraw::make(const std::vector<SupportSurface>& 
             triangles = detail::triangulate(inner);
           }
         } else {
-          triangles = detail::triangulate(ccw);
-          if (!hasRoom(s, triangles, inset)) {
-            triangles.clear();
+          // Exact triangles of the surface with its holes; the inset by rejection.
+          triangles = detail::trapezoidTriangles(ccw, s.holes);
+          if (inset > 0.0) {
+            if (!hasRoom(s, triangles, inset)) {
+              triangles.clear();
+            }
+            piece.rejects = true;
+            piece.outer = ccw;
+            piece.holes = s.holes;
           }
-          piece.rejects = true;
-          piece.outer = ccw;
-          piece.holes = s.holes;
         }
       } catch (const ConfigError&) {
         triangles.clear();  // a surface rounding made degenerate: left out

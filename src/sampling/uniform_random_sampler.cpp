@@ -120,7 +120,7 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
       throw ConfigError("sampler " + quoteText(name()) + ": object " + quoteText(object->name) +
                         " is already in this sampler");
     }
-    Entry entry{object, effectiveRange(*object, 0), effectiveRange(*object, 1), nullptr};
+    Entry entry{object, effectiveRange(*object, 0), effectiveRange(*object, 1), nullptr, nullptr};
     for (int axis = 0; axis < 2 && !params_.region && !params_.surface; ++axis) {
       const Eigen::Vector2d& r = axis == 0 ? entry.x : entry.y;
       if (r[0] > r[1]) {

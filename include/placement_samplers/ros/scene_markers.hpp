@@ -17,7 +17,8 @@ namespace ros_interface {
 /// shapes (namespace "objects", in the colour of its name), each fixture's ("fixtures", grey),
 /// the name of each above it ("labels"), each uniform sampler's region ("regions": a thin
 /// translucent box for x_range/y_range, a TRIANGLE_LIST for other shapes) and its keep-out zones
-/// ("keep_out", red triangles). Hidden objects are left out.
+/// ("keep_out", red triangles), the support surfaces of surface regions ("surfaces", blue
+/// triangles with a label giving each one's index and clearance). Hidden objects are left out.
 ///
 /// A simulated object that fell, or moved or turned by the physics tolerances or more, gets a
 /// red wire box around it ("physics") and a red label saying so ("cube: fell, moved 0.412 m,

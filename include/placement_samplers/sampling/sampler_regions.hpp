@@ -20,6 +20,10 @@ struct SamplerRegion {
   /// rectangle of x_range and y_range (centre and size).
   std::vector<Eigen::Vector3d> triangles;
   bool keepOut = false;  ///< a keep-out zone of the sampler, not where it draws
+  /// A support surface of a surface region (its triangles at the surface's height) with
+  /// @ref label "sampler: surface i, clearance c m" at @ref centre.
+  bool surface = false;
+  std::string label;
 };
 
 /// The regions and keep-out zones of every uniform sampler that @p request ran in @p scene

@@ -43,9 +43,9 @@ std::vector<SupportSurface> surfacesOf(const SurfaceRegion& region, const Object
                                        const Eigen::Quaterniond& orientation);
 
 /// Uniform draws over the surfaces an object fits on, each inset by a margin: one piece per
-/// surface. A convex surface without holes is inset exactly; any other is drawn whole and
-/// accepts() rejects the draws in a hole or nearer than the margin to an edge, so the accepted
-/// points are uniform over the inset surfaces together.
+/// surface. A convex surface without holes is inset exactly; any other is drawn whole (exact
+/// triangles around its holes) and accepts() rejects the draws nearer than the margin to an
+/// edge, so the accepted points are uniform over the inset surfaces together.
 class SurfaceDraw {
  public:
   /// Why make() found no surface for an object.
@@ -65,8 +65,7 @@ class SurfaceDraw {
   /// One candidate (draw order: README, "Support surfaces"): a triangle by area (one U(0, 1)),
   /// then a point in it (two) [m]; @p surface receives the index of its surface.
   Eigen::Vector2d draw(Engine& engine, std::size_t& surface) const;
-  /// False for a draw of a non-convex or holed surface in a hole or nearer than the inset to
-  /// an edge.
+  /// False for a draw of a non-convex or holed surface nearer than the inset to an edge.
   bool accepts(const Eigen::Vector2d& p, std::size_t surface) const;
   /// The height of surface @p surface [m].
   double z(std::size_t surface) const { return pieces_[surface].z; }
