@@ -235,23 +235,21 @@ class Builder {
                 " itself: name a fixture or an object an earlier sampler places");
       }
     }
-    try {
-      for (const FixtureSpec& f : config_.fixtures) {
-        if (f.name == region.of) {
-          sampler.bindSurfaces(*f.object, f.position, f.orientation, false);
-          return;
-        }
-      }
-      if (const ObjectModel* object = config_.findObject(region.of)) {
-        if (available_.count(region.of) == 0) {
-          of.fail("region.of " + quoteText(region.of) + " of sampler " + quoteText(sampler.name()) +
-                  " is an object that no earlier sampler places: it is not in the scene yet");
-        }
-        sampler.bindSurfaces(*object, Eigen::Vector3d::Zero(), object->initOrientation, true);
+    for (const FixtureSpec& f : config_.fixtures) {
+      if (f.name == region.of) {
+        wrap(node, [&] { sampler.bindSurfaces(*f.object, f.position, f.orientation, false); });
         return;
       }
-    } catch (const ConfigError& e) {
-      node.fail(e.what());
+    }
+    if (const ObjectModel* object = config_.findObject(region.of)) {
+      if (available_.count(region.of) == 0) {
+        of.fail("region.of " + quoteText(region.of) + " of sampler " + quoteText(sampler.name()) +
+                " is an object that no earlier sampler places: it is not in the scene yet");
+      }
+      wrap(node, [&] {
+        sampler.bindSurfaces(*object, Eigen::Vector3d::Zero(), object->initOrientation, true);
+      });
+      return;
     }
     config_.warnings.push_back("sampler " + quoteText(sampler.name()) + ": region.of " +
                                quoteText(region.of) +

@@ -145,19 +145,8 @@ bool SurfaceDraw::accepts(const Eigen::Vector2d& p, std::size_t surface) const {
   return !piece.rejects || depthIn(piece.outer, piece.holes, p) >= inset_;
 }
 
-double distanceToSurfaces(const std::vector<SupportSurface>& surfaces, double inset,
-                          const Eigen::Vector2d& p, std::size_t& nearest) {
-  double best = std::numeric_limits<double>::infinity();
-  nearest = 0;
-  for (std::size_t i = 0; i < surfaces.size(); ++i) {
-    const double shortfall =
-        std::max(0.0, inset - depthIn(surfaces[i].outer, surfaces[i].holes, p));
-    if (shortfall < best) {
-      best = shortfall;
-      nearest = i;
-    }
-  }
-  return best;
+double surfaceShortfall(const SupportSurface& surface, double inset, const Eigen::Vector2d& p) {
+  return std::max(0.0, inset - depthIn(surface.outer, surface.holes, p));
 }
 
 }  // namespace placement_samplers

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <unordered_map>
@@ -201,10 +202,23 @@ class Validator {
               quoteText(region.of) + " (sampler " + quoteText(s) + ")");
       return;
     }
+    // The surface it is on: the nearest in x-y, and of those as near (all it lies on:
+    // shelves stack them) the one at the nearest height.
     const Eigen::Vector3d& p = candidate.position;
+    const double lift = sampler.params().zOffset - object.bottomOffset.z();
     std::size_t nearest = 0;
-    double outside =
-        distanceToSurfaces(fitting, sampler.surfaceInset(object), p.head<2>(), nearest);
+    double outside = std::numeric_limits<double>::infinity();
+    double off = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < fitting.size(); ++i) {
+      const double d = surfaceShortfall(fitting[i], sampler.surfaceInset(object), p.head<2>());
+      const double dz = std::abs(p.z() - (fitting[i].z + lift));
+      const double tie = std::max(options_.regionTolerance, 1e-12);
+      if (d < outside - tie || (std::abs(d - outside) <= tie && dz < off)) {
+        nearest = i;
+        outside = d;
+        off = dz;
+      }
+    }
     const double margin =
         sampler.params().ensureObjectBoundaryInRange ? object.horizontalRadius : 0.0;
     for (const KeepOutZone& zone : sampler.params().keepOut) {
@@ -218,8 +232,7 @@ class Validator {
               quoteText(region.of) + " that sampler " + quoteText(s) + " draws on by " +
               metres(outside));
     }
-    const double z = fitting[nearest].z + sampler.params().zOffset - object.bottomOffset.z();
-    const double off = std::abs(p.z() - z);
+    const double z = fitting[nearest].z + lift;
     if (!(off <= options_.heightTolerance)) {
       add(verdict, Violation::Kind::Height, s, "", off,
           "object " + quoteText(object.name) + " is at z " + metres(p.z()) +

@@ -180,8 +180,8 @@ TEST(RegionSampler, ConfigurationErrorsNameTheParameter) {
                        "vertices: [[0, 0], [1, 0]]}}\n"),
             "samplers[0].region.vertices: expected 3 to 1000 vertices [x, y], got 2");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, region: {shape: circle, radius: 1}}\n"),
-            "samplers[0].region.shape: expected rectangle, rotated_rectangle, disk, annulus or "
-            "polygon, got 'circle'");
+            "samplers[0].region.shape: expected rectangle, rotated_rectangle, disk, annulus, "
+            "polygon or surface, got 'circle'");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, region: {shape: disk, size: 1}}\n"),
             "samplers[0].region: unknown key 'size' (expected one of: shape, center, radius)");
   // `centre` is an alias of `center`: listed when the user wrote it, never both.

@@ -124,9 +124,7 @@ class SurfaceDrawCache {
   std::vector<std::pair<Key, Value>> entries_;
 };
 
-/// How far @p p lies from the nearest surface of @p surfaces inset by @p inset, 0 on one [m];
-/// @p nearest receives that surface's index (validation).
-double distanceToSurfaces(const std::vector<SupportSurface>& surfaces, double inset,
-                          const Eigen::Vector2d& p, std::size_t& nearest);
+/// How far @p p lies from @p surface inset by @p inset, 0 on it [m] (validation).
+double surfaceShortfall(const SupportSurface& surface, double inset, const Eigen::Vector2d& p);
 
 }  // namespace placement_samplers
