@@ -6,10 +6,12 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "geometry/surface_polygons.hpp"
 #include "placement_samplers/geometry/shape.hpp"
+#include "placement_samplers/geometry/support_surfaces.hpp"
 
 namespace placement_samplers {
 namespace surfaces {
@@ -81,11 +83,39 @@ void addPrimitive(const Shape& shape, const Eigen::Isometry3d& pose, double cosT
 void addMesh(const Mesh& mesh, const Eigen::Isometry3d& pose, double cosTolerance,
              SurfaceParts& parts);
 
+/// Facets of the up-facing triangles @p up (indices in @p mesh's triangles): grouped across
+/// shared edges where coplanar (within kHeightTolerance), each group's boundary chained into
+/// loops, outer and holes.
+void addMeshFacets(const WorldMesh& mesh, std::vector<int> up, std::vector<Facet>& facets);
+
 /// The region inside @p mesh at height @p height (its cross-section, from the loops that its
 /// triangles crossing the height make). Open loops of an open mesh are left out; loops that do
 /// not make valid polygons are replaced by their convex hulls (the region is cut out of
 /// surfaces: larger is the safe side).
 Polygons meshSection(const WorldMesh& mesh, double height);
+
+/// Coplanar facets, merged into the same surfaces.
+struct Cluster {
+  std::vector<int> facets;  ///< indices in SurfaceParts::facets
+  double zFirst = 0.0;      ///< its first facet's highest point
+  double z = 0.0;           ///< its highest point: the surfaces' height [m]
+};
+
+/// Groups of the indices of @p boxes, joined where two boxes touch or overlap (within
+/// kLinearTolerance) and @p joinable(a, b) says so; each group ascending, the groups in the
+/// order of their first index.
+std::vector<std::vector<int>> touchingGroups(const std::vector<Box2>& boxes,
+                                             const std::function<bool(int, int)>& joinable);
+
+/// Level facets whose heights are within kHeightTolerance of the lowest of them are one
+/// cluster; tilted facets are one where their boxes touch and their planes are within
+/// kHeightTolerance of each other over both boxes.
+std::vector<Cluster> clusterFacets(const std::vector<Facet>& facets);
+
+/// The surfaces of @p clusters: each cluster's polygons united, geometry standing on them cut
+/// out, clearance, surfaces of less than SurfaceOptions::minArea dropped. Not sorted.
+SurfaceSearch extractSurfaces(const SurfaceParts& parts, const std::vector<Cluster>& clusters,
+                              const SurfaceOptions& options);
 
 /// The counter-clockwise projection of triangle @p index of @p mesh.
 Ring triangleFootprint(const WorldMesh& mesh, int index);

@@ -50,6 +50,16 @@ void simplifyPolygons(Polygons& polygons);
 /// The convex hull of @p points, counter-clockwise (empty when they have no area).
 Ring convexHull(std::vector<Point2> points);
 
+/// Whether counter-clockwise @p ring turns left (or goes straight) at every vertex.
+bool isConvex(const Ring& ring);
+/// Whether the interiors of convex rings @p a and @p b are apart (a line separates them; rings
+/// that touch, or overlap by less than kLinearTolerance, are apart).
+bool convexApart(const Ring& a, const Ring& b);
+
+/// Whether convex rings @p a and @p b overlap or share a piece of boundary longer than
+/// kLinearTolerance: whether their union is one polygon rather than both as they are.
+bool convexJoined(const Ring& a, const Ring& b);
+
 /// Polygons from closed loops of a planar region's boundary, the region on each loop's left:
 /// counter-clockwise loops are outer rings, clockwise ones holes, each given to the smallest
 /// outer ring that contains it. Degenerate loops are dropped, holes outside every outer ring too.

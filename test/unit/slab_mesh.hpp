@@ -1,7 +1,8 @@
 #pragma once
 
-// A closed box mesh whose top is finely subdivided: many coplanar up-facing triangles for the
-// support surface tests and benchmark.
+// Generated meshes for the support surface tests and benchmark: a closed box whose top is
+// finely subdivided (many coplanar up-facing triangles), and a rough sheet (many up-facing
+// triangles, few of them coplanar).
 
 #include <Eigen/Core>
 #include <vector>
@@ -49,6 +50,28 @@ inline Mesh makeSlabMesh(double sx, double sy, double z0, double z1, int n) {
     mesh.triangles.emplace_back(b0, b1, border[next]);
     mesh.triangles.emplace_back(b0, border[next], border[k]);
     mesh.triangles.emplace_back(centre, b1, b0);
+  }
+  return mesh;
+}
+
+/// An open sheet over [0, 0.01 n]^2 [m]: an n x n grid of squares of two triangles each (2 n^2
+/// triangles), its vertices at pseudo-random heights in [0, 0.35] mm, so that the triangles
+/// tilt by up to about 0.05 rad and few neighbours are coplanar.
+inline Mesh makeRoughMesh(int n) {
+  Mesh mesh;
+  mesh.source = "generated rough sheet";
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const unsigned hash = (static_cast<unsigned>(i) * 73856093u) ^ (j * 19349663u);
+      mesh.vertices.emplace_back(0.01 * i, 0.01 * j, 0.00005 * ((hash >> 4) % 8));
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int v = j * (n + 1) + i;
+      mesh.triangles.emplace_back(v, v + 1, v + n + 2);
+      mesh.triangles.emplace_back(v, v + n + 2, v + n + 1);
+    }
   }
   return mesh;
 }

@@ -454,6 +454,76 @@ TEST(SupportSurfaces, CabinetShelvesInsideTheCarcass) {
   EXPECT_EQ(search.surfaces[2].clearance, kInf);
 }
 
+TEST(SupportSurfaces, TiltedTopsInOnePlaneMerge) {
+  // Two boxes turned alike about x, side by side along x: their tops are one tilted plane.
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()).matrix();
+  const Eigen::Vector3d size(0.2, 0.2, 0.1);
+  SurfaceSearch search = find(
+      {boxAt(size, Eigen::Vector3d(0, 0, 0), tilt), boxAt(size, Eigen::Vector3d(0.2, 0, 0), tilt)});
+  ASSERT_EQ(search.surfaces.size(), 1u);
+  EXPECT_NEAR(search.surfaces[0].area, 2 * 0.04 * std::cos(0.05), 1e-12);
+  EXPECT_NEAR(search.surfaces[0].z, 0.1 * std::sin(0.05) + 0.05 * std::cos(0.05), 1e-12);
+  EXPECT_EQ(search.surfaces[0].outer.size(), 4u);
+  // Raised by 1e-5 (more than the height tolerance): two surfaces.
+  search = find({boxAt(size, Eigen::Vector3d(0, 0, 0), tilt),
+                 boxAt(size, Eigen::Vector3d(0.2, 0, 1e-5), tilt)});
+  EXPECT_EQ(search.surfaces.size(), 2u);
+}
+
+TEST(SupportSurfaces, ManySurfacesOverManyObstacles) {
+  // 30 x 30 blocks standing on a 3 x 3 board, a roof over the half x < 0: the board's holes and
+  // each block's clearance found through the grid of obstacles.
+  std::vector<Shape> shapes = {
+      boxAt(Eigen::Vector3d(3, 3, 0.02), Eigen::Vector3d(0, 0, 0.01)),
+      boxAt(Eigen::Vector3d(1.5, 3, 0.02), Eigen::Vector3d(-0.75, 0, 1.01))};
+  for (int i = 0; i < 30; ++i) {
+    for (int j = 0; j < 30; ++j) {
+      shapes.push_back(boxAt(Eigen::Vector3d(0.06, 0.06, 0.06),
+                             Eigen::Vector3d(-1.45 + 0.1 * i, -1.45 + 0.1 * j, 0.05)));
+    }
+  }
+  const SurfaceSearch search = find(shapes);
+  ASSERT_EQ(search.surfaces.size(), 902u);
+  EXPECT_NEAR(search.surfaces[0].z, 0.02, 1e-12);
+  EXPECT_EQ(search.surfaces[0].holes.size(), 900u);
+  EXPECT_NEAR(search.surfaces[0].area, 9 - 900 * 0.0036, 1e-9);
+  EXPECT_NEAR(search.surfaces[0].clearance, 0.98, 1e-12);
+  int covered = 0;
+  for (std::size_t k = 1; k < 901; ++k) {
+    const SupportSurface& top = search.surfaces[k];
+    EXPECT_NEAR(top.z, 0.08, 1e-12);
+    EXPECT_NEAR(top.area, 0.0036, 1e-12);
+    if (top.outer[0].x() < 0) {
+      EXPECT_NEAR(top.clearance, 0.92, 1e-12);
+      ++covered;
+    } else {
+      EXPECT_EQ(top.clearance, kInf);
+    }
+  }
+  EXPECT_EQ(covered, 450);
+  EXPECT_NEAR(search.surfaces[901].z, 1.02, 1e-12);
+}
+
+TEST(SupportSurfaces, RoughMeshOfTiltedTrianglesEnds) {
+  // 7200 triangles tilted within the tolerance, few neighbours coplanar, at many heights: by
+  // default all dropped but for a few patches, and all of them with a minimum area of 0.
+  const Mesh rough = test::makeRoughMesh(60);
+  SurfaceSearch search = find({meshShape(rough)});
+  for (const SupportSurface& s : search.surfaces) {
+    EXPECT_GE(s.area, 0.0025);
+  }
+  EXPECT_GT(search.largestDroppedArea, 0.0);
+  EXPECT_LT(search.largestDroppedArea, 0.0025);
+  SurfaceOptions all;
+  all.minArea = 0.0;
+  search = find({meshShape(rough)}, all);
+  EXPECT_GT(search.surfaces.size(), 1000u);
+  EXPECT_LE(search.surfaces.size(), 7200u);
+  for (const SupportSurface& s : search.surfaces) {
+    expectWellFormed(s);
+  }
+}
+
 TEST(SupportSurfaces, BrokenMeshesGiveWhatIsThere) {
   Mesh slab = test::makeSlabMesh(1.0, 1.0, 0.0, 0.1, 4);
   const std::size_t count = slab.triangles.size();
