@@ -36,6 +36,8 @@ PS_PACKAGES=(
   libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev
   # MJCF objects are read and bounded before MuJoCo compiles them (the XML parser MuJoCo uses).
   libtinyxml2-dev
+  # Boost.Geometry (header-only) merges and cuts the polygons of support surfaces.
+  libboost-dev
 )
 
 ps_sudo() {

@@ -221,5 +221,6 @@ void benchStrategies(const Options& options);
 void benchFcl(const Options& options);
 void benchBatch(const Options& options);
 void benchConfigFiles(const Options& options);
+void benchSurfaces(const Options& options);
 
 }  // namespace bench

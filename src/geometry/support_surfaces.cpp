@@ -1,59 +1,83 @@
-// Provisional: box tops only, no merging, cuts or clearance (the full extraction replaces it).
 #include "placement_samplers/geometry/support_surfaces.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+#include "geometry/surface_parts.hpp"
 
 namespace placement_samplers {
+namespace {
+
+using namespace surfaces;
+
+const Eigen::Vector2d& lowestXVertex(const std::vector<Eigen::Vector2d>& ring) {
+  return *std::min_element(ring.begin(), ring.end(), [](const auto& a, const auto& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+}
+
+}  // namespace
 
 SurfaceSearch findSupportSurfaces(const std::vector<Shape>& shapes, const Eigen::Isometry3d& pose,
                                   const SurfaceOptions& options) {
-  SurfaceSearch out;
+  // A tolerance beyond a right angle would take side faces; NaN takes none but exact +z.
+  const double tolerance =
+      options.normalTolerance >= 0.0 ? std::min(options.normalTolerance, 0.5 * M_PI) : 0.0;
+  const double cosTolerance = std::cos(tolerance);
+  SurfaceParts parts;
   for (const Shape& shape : shapes) {
-    if (shape.type != ShapeType::Box) {
-      continue;
+    const Eigen::Isometry3d placed = pose * shape.pose;
+    if (shape.type == ShapeType::Mesh) {
+      if (shape.mesh) {
+        addMesh(*shape.mesh, placed, cosTolerance, parts);
+      }
+    } else {
+      addPrimitive(shape, placed, cosTolerance, parts);
     }
-    const Eigen::Isometry3d world = pose * shape.pose;
-    const Eigen::Matrix3d r = world.linear();
-    if (r(2, 2) < std::cos(options.normalTolerance)) {
-      continue;
-    }
-    const Eigen::Vector3d h = 0.5 * shape.size;
-    SupportSurface s;
-    double z = -1e300;
-    for (const auto& c : {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1),
-                          Eigen::Vector2d(-1, 1)}) {
-      const Eigen::Vector3d p = world * Eigen::Vector3d(c.x() * h.x(), c.y() * h.y(), h.z());
-      s.outer.push_back(p.head<2>());
-      z = std::max(z, p.z());
-    }
-    s.z = z;
-    s.area = shape.size.x() * shape.size.y();
-    if (s.area < options.minArea) {
-      out.largestDroppedArea = std::max(out.largestDroppedArea, s.area);
-      continue;
-    }
-    out.surfaces.push_back(s);
   }
-  std::sort(out.surfaces.begin(), out.surfaces.end(),
-            [](const SupportSurface& a, const SupportSurface& b) { return a.z < b.z; });
-  return out;
+  SurfaceSearch search = extractSurfaces(parts, clusterFacets(parts.facets), options);
+  std::vector<std::pair<Eigen::Vector2d, std::size_t>> keys;
+  for (std::size_t i = 0; i < search.surfaces.size(); ++i) {
+    keys.emplace_back(lowestXVertex(search.surfaces[i].outer), i);
+  }
+  std::stable_sort(keys.begin(), keys.end(), [&](const auto& a, const auto& b) {
+    const double za = search.surfaces[a.second].z;
+    const double zb = search.surfaces[b.second].z;
+    if (za != zb) {
+      return za < zb;
+    }
+    if (a.first.x() != b.first.x()) {
+      return a.first.x() < b.first.x();
+    }
+    return a.first.y() < b.first.y();
+  });
+  std::vector<SupportSurface> sorted;
+  sorted.reserve(keys.size());
+  for (const auto& key : keys) {
+    sorted.push_back(std::move(search.surfaces[key.second]));
+  }
+  search.surfaces.swap(sorted);
+  return search;
 }
 
 SupportSurface movedSurface(const SupportSurface& surface, double yaw,
                             const Eigen::Vector3d& translation) {
-  const Eigen::Rotation2Dd r(yaw);
-  SupportSurface s = surface;
-  for (Eigen::Vector2d& v : s.outer) {
-    v = r * v + translation.head<2>();
+  const Eigen::Rotation2Dd turn(yaw);
+  const Eigen::Vector2d shift = translation.head<2>();
+  SupportSurface moved = surface;
+  moved.z = surface.z + translation.z();
+  for (Eigen::Vector2d& p : moved.outer) {
+    p = turn * p + shift;
   }
-  for (auto& hole : s.holes) {
-    for (Eigen::Vector2d& v : hole) {
-      v = r * v + translation.head<2>();
+  for (auto& hole : moved.holes) {
+    for (Eigen::Vector2d& p : hole) {
+      p = turn * p + shift;
     }
   }
-  s.z += translation.z();
-  return s;
+  return moved;
 }
 
 }  // namespace placement_samplers
