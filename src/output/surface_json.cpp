@@ -1,4 +1,5 @@
 // A surface region in --describe: its keys and the surfaces found on its target.
+#include <algorithm>
 #include <cmath>
 
 #include "output/json_numbers.hpp"
@@ -19,12 +20,15 @@ void appendPoints(std::string& out, const std::vector<Eigen::Vector2d>& points) 
 
 }  // namespace
 
-void appendSurfaces(std::string& out, const std::vector<SupportSurface>& surfaces) {
+void appendSurfaces(std::string& out, const std::vector<SupportSurface>& surfaces,
+                    const std::vector<std::size_t>& selected) {
   out += '[';
   for (std::size_t i = 0; i < surfaces.size(); ++i) {
     const SupportSurface& s = surfaces[i];
     out += i == 0 ? "{\"index\": " : ", {\"index\": ";
     appendInteger(out, i);
+    const bool taken = std::find(selected.begin(), selected.end(), i) != selected.end();
+    out += taken ? ", \"selected\": true" : ", \"selected\": false";
     out += ", \"z\": ";
     appendNumber(out, s.z);
     out += ", \"area\": ";
@@ -66,13 +70,13 @@ void appendSurfaceRegion(std::string& out, const UniformRandomSampler& sampler) 
   // The selected surfaces: in the world for a configured fixture, at the object's origin for
   // an earlier object (they move with it), none for a request's fixture (found per call).
   out += ", \"surfaces_frame\": ";
-  if (!sampler.boundSurfaces()) {
+  if (!sampler.foundSurfaces()) {
     out += "null, \"surfaces\": null}";
     return;
   }
   out += sampler.surfacesBoundToObject() ? "\"object\"" : "\"world\"";
   out += ", \"surfaces\": ";
-  appendSurfaces(out, *sampler.boundSurfaces());
+  appendSurfaces(out, sampler.foundSurfaces()->surfaces, sampler.selectedSurfaces());
   out += '}';
 }
 

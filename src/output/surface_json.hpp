@@ -8,8 +8,10 @@
 
 namespace placement_samplers::detail {
 
-/// [{"index", "z", "area", "clearance" (null: unbounded), "vertices", "holes"}, ...] [m], [m^2].
-void appendSurfaces(std::string& out, const std::vector<SupportSurface>& surfaces);
+/// [{"index", "selected" (in @p selected), "z", "area", "clearance" (null: unbounded),
+/// "vertices", "holes"}, ...] [m], [m^2].
+void appendSurfaces(std::string& out, const std::vector<SupportSurface>& surfaces,
+                    const std::vector<std::size_t>& selected);
 
 /// {"shape": "surface", "of", "select", "min_area", "normal_tolerance", "margin",
 /// "surfaces_frame" ("world", "object" or null), "surfaces" (null for a request's fixture)}.

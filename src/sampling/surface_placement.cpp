@@ -45,8 +45,17 @@ std::string UniformRandomSampler::noFitMessage(const ObjectModel& object,
 
 void UniformRandomSampler::bindSurfaces(const ObjectModel& target, const Eigen::Vector3d& position,
                                         const Eigen::Quaterniond& orientation, bool objectFrame) {
-  auto surfaces = std::make_shared<const std::vector<SupportSurface>>(
-      surfacesOf(*params_.surface, target, position, orientation));
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = position;
+  pose.linear() = orientation.normalized().toRotationMatrix();
+  auto found = std::make_shared<const SurfaceSearch>(
+      findSupportSurfaces(target.shapes, pose, params_.surface->options()));
+  std::vector<std::size_t> indices = selectIndices(*params_.surface, *found);
+  std::vector<SupportSurface> selected;
+  for (const std::size_t i : indices) {
+    selected.push_back(found->surfaces[i]);
+  }
+  auto surfaces = std::make_shared<const std::vector<SupportSurface>>(std::move(selected));
   for (Entry& entry : entries_) {
     const ObjectModel& object = *entry.object;
     SurfaceDraw::NoFit why;
@@ -60,6 +69,8 @@ void UniformRandomSampler::bindSurfaces(const ObjectModel& target, const Eigen::
     }
   }
   boundSurfaces_ = std::move(surfaces);
+  foundSurfaces_ = std::move(found);
+  selectedIndices_ = std::move(indices);
   boundToObject_ = objectFrame;
 }
 

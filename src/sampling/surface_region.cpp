@@ -1,4 +1,5 @@
 // A surface region's selection of the support surfaces found on its target.
+#include <algorithm>
 #include <sstream>
 
 #include "placement_samplers/errors.hpp"
@@ -38,8 +39,7 @@ std::string selectText(const SurfaceRegion& region) {
   return out.str();
 }
 
-std::vector<SupportSurface> selectSurfaces(const SurfaceRegion& region,
-                                           const SurfaceSearch& found) {
+std::vector<std::size_t> selectIndices(const SurfaceRegion& region, const SurfaceSearch& found) {
   const std::vector<SupportSurface>& all = found.surfaces;
   if (all.empty()) {
     std::ostringstream out;
@@ -54,17 +54,22 @@ std::vector<SupportSurface> selectSurfaces(const SurfaceRegion& region,
     throw ConfigError(out.str());
   }
   switch (region.select) {
-    case SurfaceRegion::Select::All:
-      return all;
+    case SurfaceRegion::Select::All: {
+      std::vector<std::size_t> out(all.size());
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        out[i] = i;
+      }
+      return out;
+    }
     case SurfaceRegion::Select::Top: {
       double top = all.front().z;
       for (const SupportSurface& s : all) {
         top = std::max(top, s.z);
       }
-      std::vector<SupportSurface> out;
-      for (const SupportSurface& s : all) {
-        if (s.z > top - kSameHeight) {
-          out.push_back(s);
+      std::vector<std::size_t> out;
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        if (all[i].z > top - kSameHeight) {
+          out.push_back(i);
         }
       }
       return out;
@@ -72,8 +77,12 @@ std::vector<SupportSurface> selectSurfaces(const SurfaceRegion& region,
     case SurfaceRegion::Select::Indices:
       break;
   }
-  std::vector<SupportSurface> out;
-  for (const std::size_t i : region.indices) {
+  for (std::size_t k = 0; k < region.indices.size(); ++k) {
+    const std::size_t i = region.indices[k];
+    if (std::find(region.indices.begin(), region.indices.begin() + static_cast<std::ptrdiff_t>(k),
+                  i) != region.indices.begin() + static_cast<std::ptrdiff_t>(k)) {
+      throw ConfigError("region.select: index " + std::to_string(i) + " is listed twice");
+    }
     if (i >= all.size()) {
       std::ostringstream message;
       message << "region.select: index " << i << " is past the last support surface of "
@@ -81,7 +90,15 @@ std::vector<SupportSurface> selectSurfaces(const SurfaceRegion& region,
               << " (indices 0 to " << all.size() - 1 << ", as --describe lists them)";
       throw ConfigError(message.str());
     }
-    out.push_back(all[i]);
+  }
+  return region.indices;
+}
+
+std::vector<SupportSurface> selectSurfaces(const SurfaceRegion& region,
+                                           const SurfaceSearch& found) {
+  std::vector<SupportSurface> out;
+  for (const std::size_t i : selectIndices(region, found)) {
+    out.push_back(found.surfaces[i]);
   }
   return out;
 }

@@ -310,6 +310,9 @@ TEST(SurfaceRegion, ConfigurationErrorsSayWhatIsWrong) {
                        "shelf1, select: [5]}}\n"),
             "samplers[0].region: region.select: index 5 is past the last support surface of "
             "'shelf1', which has 5 surfaces (indices 0 to 4, as --describe lists them)");
+  EXPECT_EQ(buildError("samplers:\n  - {name: S, objects: [cube], region: {shape: surface, of: "
+                       "shelf1, select: [1, 0, 1]}}\n"),
+            "samplers[0].region: region.select: index 1 is listed twice");
   // Surfaces 3 and 4 are the side panels' tops, 0.02 m wide.
   EXPECT_EQ(
       buildError("samplers:\n  - {name: S, objects: [cube], region: {shape: surface, of: "
@@ -380,12 +383,15 @@ TEST(SurfaceRegion, DescribeAndRvizShowTheSurfaces) {
   const std::string json = configToJson(s.generator->config());
   EXPECT_NE(json.find("\"region\": {\"shape\": \"surface\", \"of\": \"shelf1\", \"select\": "
                       "\"all\", \"min_area\": 0.01, \"normal_tolerance\": 0.1, \"margin\": 0, "
-                      "\"surfaces_frame\": \"world\", \"surfaces\": [{\"index\": 0, \"z\": 0.02, "
+                      "\"surfaces_frame\": \"world\", \"surfaces\": [{\"index\": 0, \"selected\": "
+                      "true, \"z\": 0.02, "
                       "\"area\": 0.18"),
             std::string::npos)
       << json;
-  EXPECT_NE(json.find("{\"index\": 2, \"z\": 0.7, \"area\": 0.18, \"clearance\": null"),
-            std::string::npos);
+  const std::size_t top =
+      json.find("{\"index\": 2, \"selected\": true, \"z\": 0.7, \"area\": 0.18");
+  ASSERT_NE(top, std::string::npos);
+  EXPECT_EQ(json.find("\"clearance\": ", top), json.find("\"clearance\": null", top));
   std::size_t surfaces = 0;
   for (const SamplerRegion& r : samplerRegions(s.request, s.results[0])) {
     if (r.surface) {

@@ -31,6 +31,11 @@ struct SurfaceRegion {
 /// "all", "top" or the indices, as a configuration writes them ("[1, 2]").
 std::string selectText(const SurfaceRegion& region);
 
+/// The indices of the surfaces @p region selects of @p found (found with region.options()),
+/// in the order of `select`.
+/// @throw ConfigError as selectSurfaces()
+std::vector<std::size_t> selectIndices(const SurfaceRegion& region, const SurfaceSearch& found);
+
 /// The surfaces @p region selects of @p found (found with region.options()).
 /// @throw ConfigError "region.of 'shelf' has no support surface of at least 0.0025 m^2 (the
 ///        largest is 0.001 m^2)", or naming an index past the last surface

@@ -107,9 +107,10 @@ class UniformRandomSampler : public PlacementSampler {
                                          const RequestSurfaces* request) const;
   /// True when bindSurfaces() found the surface region's surfaces.
   bool surfacesBound() const { return boundSurfaces_ != nullptr; }
-  /// The surfaces bindSurfaces() found (nullptr: none), at the object's origin when
-  /// surfacesBoundToObject().
-  const std::vector<SupportSurface>* boundSurfaces() const { return boundSurfaces_.get(); }
+  /// Every surface bindSurfaces() found on the target (nullptr: none bound), at the object's
+  /// origin when surfacesBoundToObject(); selectedSurfaces() are the indices `select` takes.
+  const SurfaceSearch* foundSurfaces() const { return foundSurfaces_.get(); }
+  const std::vector<std::size_t>& selectedSurfaces() const { return selectedIndices_; }
   bool surfacesBoundToObject() const { return boundToObject_; }
   /// The inset a surface region keeps @p object's centre from the surfaces' edges [m]: its
   /// horizontal radius under ensure_object_boundary_in_range, plus the region's margin.
@@ -177,6 +178,8 @@ class UniformRandomSampler : public PlacementSampler {
   /// A surface region's target's selected surfaces, when bindSurfaces() found them.
   std::shared_ptr<const std::vector<SupportSurface>> boundSurfaces_;
   bool boundToObject_ = false;  ///< boundSurfaces_ are at the object's origin
+  std::shared_ptr<const SurfaceSearch> foundSurfaces_;  ///< all of them, for --describe
+  std::vector<std::size_t> selectedIndices_;
 };
 
 }  // namespace placement_samplers
