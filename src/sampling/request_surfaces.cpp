@@ -32,7 +32,7 @@ void prepareRequestSurfaces(PreparedRequest& request) {
         found.sampler = &sampler;
         try {
           found.surfaces = std::make_shared<const std::vector<SupportSurface>>(
-              sampler.surfacesOn(target, nullptr));
+              sampler.surfacesOn(target, nullptr, &found.indices));
         } catch (const ConfigError& e) {
           throw RequestError("sampler " + quoteText(sampler.name()) + ": " + e.what());
         }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "placement_samplers/sampling/region.hpp"
@@ -15,6 +16,7 @@ struct Walker {
   const PreparedRequest& request;
   const SceneResult& scene;
   std::vector<SamplerRegion> regions;
+  std::set<std::pair<std::string, std::size_t>> shown;  ///< surfaces drawn: target, index
 
   /// The named reference's entry in the scene: a request fixture or an earlier placement.
   std::pair<const Eigen::Vector3d*, const ObjectModel*> find(const std::string& name) const {
@@ -88,14 +90,20 @@ struct Walker {
       orientation = placed.name == of ? placed.orientation : orientation;
     }
     std::vector<SupportSurface> found;
+    std::vector<std::size_t> indices;
     try {
       found = sampler.surfacesOn(PlacedEntry(of, object, *position, orientation, false),
-                                 &request.surfaces);
+                                 &request.surfaces, &indices);
     } catch (const std::exception&) {
       return;  // the scene failed there; its message says why
     }
-    for (std::size_t i = 0; i < found.size(); ++i) {
-      const SupportSurface& s = found[i];
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      // Each surface once, though several samplers draw on it.
+      const std::size_t i = indices[k];
+      if (!shown.emplace(of, i).second) {
+        continue;
+      }
+      const SupportSurface& s = found[k];
       SamplerRegion region;
       region.sampler = sampler.name();
       region.surface = true;
@@ -107,7 +115,7 @@ struct Walker {
       region.triangles = lift(detail::trapezoidTriangles(s.outer, s.holes), region.centre);
       region.centre.head<2>() = sum / static_cast<double>(std::max<std::size_t>(1, s.outer.size()));
       std::ostringstream label;
-      label << sampler.name() << ": surface " << i << ", clearance ";
+      label << of << ": surface " << i << ", clearance ";
       if (std::isfinite(s.clearance)) {
         label << s.clearance << " m";
       } else {
@@ -134,7 +142,7 @@ struct Walker {
 
 std::vector<SamplerRegion> samplerRegions(const PreparedRequest& request,
                                           const SceneResult& scene) {
-  Walker walker{request, scene, {}};
+  Walker walker{request, scene, {}, {}};
   if (request.sampler != nullptr) {
     request.sampler->forEachUniform(
         request.reference, request.onTop,

@@ -74,9 +74,13 @@ void UniformRandomSampler::bindSurfaces(const ObjectModel& target, const Eigen::
   boundToObject_ = objectFrame;
 }
 
-std::vector<SupportSurface> UniformRandomSampler::surfacesOn(const PlacedEntry& target,
-                                                             const RequestSurfaces* request) const {
+std::vector<SupportSurface> UniformRandomSampler::surfacesOn(
+    const PlacedEntry& target, const RequestSurfaces* request,
+    std::vector<std::size_t>* indices) const {
   const SurfaceRegion& region = *params_.surface;
+  if (boundSurfaces_ && indices != nullptr) {
+    *indices = selectedIndices_;
+  }
   if (boundSurfaces_ && !boundToObject_) {
     return *boundSurfaces_;
   }
@@ -96,11 +100,26 @@ std::vector<SupportSurface> UniformRandomSampler::surfacesOn(const PlacedEntry& 
   } else if (request != nullptr) {
     for (const TargetSurfaces& t : *request) {
       if (t.sampler == this) {
+        if (indices != nullptr) {
+          *indices = t.indices;
+        }
         return *t.surfaces;
       }
     }
   }
-  return surfacesOf(region, *target.object, target.position, target.orientation);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = target.position;
+  pose.linear() = target.orientation.normalized().toRotationMatrix();
+  const SurfaceSearch found = findSupportSurfaces(target.object->shapes, pose, region.options());
+  std::vector<std::size_t> selected = selectIndices(region, found);
+  std::vector<SupportSurface> out;
+  for (const std::size_t i : selected) {
+    out.push_back(found.surfaces[i]);
+  }
+  if (indices != nullptr) {
+    *indices = std::move(selected);
+  }
+  return out;
 }
 
 const SurfaceDraw* UniformRandomSampler::surfaceDrawOn(SampleContext& context, const Entry& entry,

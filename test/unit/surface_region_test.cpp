@@ -395,7 +395,8 @@ TEST(SurfaceRegion, DescribeAndRvizShowTheSurfaces) {
   std::size_t surfaces = 0;
   for (const SamplerRegion& r : samplerRegions(s.request, s.results[0])) {
     if (r.surface) {
-      EXPECT_EQ(r.label.rfind("S: surface " + std::to_string(surfaces) + ", clearance ", 0), 0u);
+      EXPECT_EQ(r.label.rfind("shelf1: surface " + std::to_string(surfaces) + ", clearance ", 0),
+                0u);
       ++surfaces;
     }
   }

@@ -20,8 +20,9 @@ struct SamplerRegion {
   /// rectangle of x_range and y_range (centre and size).
   std::vector<Eigen::Vector3d> triangles;
   bool keepOut = false;  ///< a keep-out zone of the sampler, not where it draws
-  /// A support surface of a surface region (its triangles at the surface's height) with
-  /// @ref label "sampler: surface i, clearance c m" at @ref centre.
+  /// A support surface of a surface region (its triangles at the surface's height; each
+  /// surface once, whatever number of samplers draw on it) with @ref label
+  /// "shelf1: surface i, clearance c m" at @ref centre.
   bool surface = false;
   std::string label;
 };

@@ -97,6 +97,7 @@ class SurfaceDraw {
 struct TargetSurfaces {
   const void* sampler = nullptr;  ///< the UniformRandomSampler
   std::shared_ptr<const std::vector<SupportSurface>> surfaces;
+  std::vector<std::size_t> indices;  ///< theirs among all the fixture's surfaces (--describe)
 };
 using RequestSurfaces = std::vector<TargetSurfaces>;
 

@@ -101,10 +101,10 @@ class UniformRandomSampler : public PlacementSampler {
                     const Eigen::Quaterniond& orientation, bool objectFrame);
   /// The surface region's selected surfaces on @p target (its `of`, found in a scene) in the
   /// world: bound ones, the request's (@p request, found by SceneGenerator::prepare()), or
-  /// found now.
+  /// found now. @p indices (if given) receives their indices among all the target's surfaces.
   /// @throw ConfigError as selectSurfaces()
-  std::vector<SupportSurface> surfacesOn(const PlacedEntry& target,
-                                         const RequestSurfaces* request) const;
+  std::vector<SupportSurface> surfacesOn(const PlacedEntry& target, const RequestSurfaces* request,
+                                         std::vector<std::size_t>* indices = nullptr) const;
   /// True when bindSurfaces() found the surface region's surfaces.
   bool surfacesBound() const { return boundSurfaces_ != nullptr; }
   /// Every surface bindSurfaces() found on the target (nullptr: none bound), at the object's
