@@ -23,6 +23,7 @@
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/output/npz_writer.hpp"
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/output/scene_json.hpp"
 #include "placement_samplers/text.hpp"
 #include "cli/validate_scenes.hpp"
@@ -336,6 +337,13 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       }
       NpzOptions npzOptions;
       npzOptions.physics = prepared.physics.mode;
+      prepared.sampler->forEachUniform(
+          prepared.reference, prepared.onTop,
+          [&](const UniformRandomSampler& sampler, const Reference&, bool) {
+            npzOptions.restPoses =
+                npzOptions.restPoses ||
+                sampler.params().resting == UniformSamplerParams::Resting::Stable;
+          });
       npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed, npzOptions);
     }
     const FailureSummary failures =

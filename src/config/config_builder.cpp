@@ -176,7 +176,8 @@ class Builder {
     detail::checkSamplerKeys(
         item, {"type", "objects", "x_range", "y_range", "rotation", "rotation_axis",
                "ensure_object_boundary_in_range", "ensure_valid_placement", "reference_pos",
-               "z_offset", "sample_args", "max_attempts", "region", "keep_out", "strategy"});
+               "z_offset", "sample_args", "max_attempts", "region", "keep_out", "strategy",
+               "resting", "min_probability", "allow_rolling"});
     const std::string name = samplerName(item);
     const ConfigNode& s = *item.params;
     const UniformSamplerParams p = detail::parseUniformParams(s, config_.maxAttempts);

@@ -77,6 +77,30 @@ UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAt
     p.maxAttempts =
         static_cast<std::uint32_t>(n->asInt(1, std::numeric_limits<std::uint32_t>::max()));
   }
+  if (const ConfigNode* n = s.get("resting")) {
+    const std::string& resting = n->asString();
+    if (resting != "upright" && resting != "stable") {
+      n->fail("expected upright (the objects as configured, robosuite's) or stable (every pose "
+              "they rest in), got " +
+              quoteText(resting));
+    }
+    p.resting = resting == "stable" ? UniformSamplerParams::Resting::Stable
+                                    : UniformSamplerParams::Resting::Upright;
+  }
+  for (const char* key : {"min_probability", "allow_rolling"}) {
+    if (s.get(key) != nullptr && p.resting != UniformSamplerParams::Resting::Stable) {
+      s.at(key).fail(std::string(key) + " applies to resting: stable only");
+    }
+  }
+  if (const ConfigNode* n = s.get("min_probability")) {
+    p.minProbability = n->asDouble();
+    if (!(p.minProbability >= 0.0 && p.minProbability < 1.0)) {
+      n->fail("expected a probability in [0, 1)");
+    }
+  }
+  if (const ConfigNode* n = s.get("allow_rolling")) {
+    p.allowRolling = n->asBool();
+  }
   return p;
 }
 

@@ -35,6 +35,7 @@ enum Member {
   kFallen,
   kSampledPosition,
   kSampledOrientation,
+  kRestPose,
   kMembers
 };
 constexpr const char* kMemberNames[kMembers] = {"names.npy",
@@ -49,7 +50,8 @@ constexpr const char* kMemberNames[kMembers] = {"names.npy",
                                                 "turned.npy",
                                                 "fallen.npy",
                                                 "sampled_position.npy",
-                                                "sampled_orientation.npy"};
+                                                "sampled_orientation.npy",
+                                                "rest_pose.npy"};
 
 }  // namespace
 
@@ -82,6 +84,8 @@ struct NpzWriter::Impl {
   std::vector<std::uint8_t> fallen;
   std::vector<double> sampledPosition;
   std::vector<double> sampledOrientation;
+  std::vector<std::int16_t> restPose;
+  bool restPoses = false;
 
   // Also when the constructor throws: the file is closed and a partial one removed.
   ~Impl() {
@@ -199,18 +203,23 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   payload[kSampledPosition] = payload[kPosition];
   headers[kSampledOrientation] = headers[kOrientation];
   payload[kSampledOrientation] = payload[kOrientation];
+  headers[kRestPose] = npz::npyHeader("<i2", {numScenes, n});
+  payload[kRestPose] = numScenes * n * sizeof(std::int16_t);
 
   d.physics = options.physics;
-  const int used = options.physics == PhysicsMode::None    ? kStable
-                   : options.physics == PhysicsMode::Check ? kSampledPosition
-                                                           : kMembers;
+  d.restPoses = options.restPoses;
+  const int physicsEnd = options.physics == PhysicsMode::None    ? kStable
+                         : options.physics == PhysicsMode::Check ? kSampledPosition
+                                                                 : kRestPose;
   for (int m = 0; m < kMembers; ++m) {
-    d.slot[m] = m < used ? m : -1;
-  }
-  d.members.resize(static_cast<std::size_t>(used));
-  for (int m = 0; m < used; ++m) {
-    d.members[m].name = kMemberNames[m];
-    d.members[m].size = headers[m].size() + payload[m];
+    const bool used = m < physicsEnd || (m == kRestPose && options.restPoses);
+    d.slot[m] = used ? static_cast<int>(d.members.size()) : -1;
+    if (used) {
+      npz::ZipMember member;
+      member.name = kMemberNames[m];
+      member.size = headers[m].size() + payload[m];
+      d.members.push_back(member);
+    }
   }
   d.zip64 = options.forceZip64 || npz::needsZip64(d.members);
   d.directoryOffset = npz::layOut(d.members, d.zip64);
@@ -243,13 +252,17 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
     throw OutputError(d.shownPath + ": not enough disk space for " + std::to_string(d.fileSize) +
                       " bytes: " + std::strerror(ENOSPC));
   }
-  for (int m = 0; m < used; ++m) {
-    const std::string local = npz::localHeader(d.members[m], d.zip64);
-    d.writeAt(local.data(), local.size(), d.members[m].headerOffset);
-    d.arrayOffset[m] = d.members[m].dataOffset + headers[m].size();
-    d.members[m].crc = 0;
+  for (int m = 0; m < kMembers; ++m) {
+    if (d.slot[m] < 0) {
+      continue;
+    }
+    npz::ZipMember& member = d.members[static_cast<std::size_t>(d.slot[m])];
+    const std::string local = npz::localHeader(member, d.zip64);
+    d.writeAt(local.data(), local.size(), member.headerOffset);
+    d.arrayOffset[m] = member.dataOffset + headers[m].size();
+    member.crc = 0;
     d.append(static_cast<Member>(m), headers[m].data(), headers[m].size(),
-             d.members[m].dataOffset - d.arrayOffset[m]);
+             member.dataOffset - d.arrayOffset[m]);
   }
   d.append(kNames, namesData.data(), namesData.size(), 0);
   d.append(kSeed, &seed, sizeof(seed), 0);
@@ -269,6 +282,9 @@ void NpzWriter::write(const std::vector<SceneResult>& scenes) {
   d.position.assign(k * n * 3, kNan);
   d.orientation.assign(k * n * 4, kNan);
   d.attempts.assign(k * n, 0);
+  if (d.restPoses) {
+    d.restPose.assign(k * n, ObjectPlacement::kUpright);
+  }
   d.success.resize(k);
   d.scene.resize(k);
   const bool physics = d.physics != PhysicsMode::None;
@@ -309,6 +325,9 @@ void NpzWriter::write(const std::vector<SceneResult>& scenes) {
       std::memcpy(&d.position[c * 3], p.position.data(), 3 * sizeof(double));
       std::memcpy(&d.orientation[c * 4], p.orientation.coeffs().data(), 4 * sizeof(double));
       d.attempts[c] = p.attempts;
+      if (d.restPoses) {
+        d.restPose[c] = p.restPose;
+      }
     }
   }
   const std::uint64_t row = d.rows;
@@ -318,6 +337,10 @@ void NpzWriter::write(const std::vector<SceneResult>& scenes) {
            row * n * 4 * sizeof(double));
   d.append(kAttempts, d.attempts.data(), d.attempts.size() * sizeof(std::uint32_t),
            row * n * sizeof(std::uint32_t));
+  if (d.restPoses) {
+    d.append(kRestPose, d.restPose.data(), d.restPose.size() * sizeof(std::int16_t),
+             row * n * sizeof(std::int16_t));
+  }
   d.append(kSuccess, d.success.data(), k, row);
   d.append(kScene, d.scene.data(), k * sizeof(std::uint64_t), row * sizeof(std::uint64_t));
   if (physics) {

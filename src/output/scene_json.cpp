@@ -111,6 +111,42 @@ void appendSampleArgs(std::string& out, const SampleArgs& args) {
   out += '}';
 }
 
+/// "resting": "stable", "min_probability", "allow_rolling" and each object's resting poses:
+/// "resting_poses": {name: [{"index", "orientation" [x, y, z, w], "probability",
+/// "bottom_offset", "top_offset", "horizontal_radius"}]} (empty for one placed as configured).
+void appendResting(std::string& out, const UniformRandomSampler& sampler) {
+  const UniformSamplerParams& p = sampler.params();
+  out += ", \"resting\": \"stable\", \"min_probability\": ";
+  appendNumber(out, p.minProbability);
+  out += p.allowRolling ? ", \"allow_rolling\": true" : ", \"allow_rolling\": false";
+  out += ", \"resting_poses\": {";
+  const std::vector<ObjectPtr> objects = sampler.objects();
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    out += i == 0 ? "" : ", ";
+    appendJsonString(out, objects[i]->name);
+    out += ": [";
+    bool first = true;
+    for (const UniformRandomSampler::RestingChoice& c : sampler.restingChoices(*objects[i])) {
+      out += first ? "{\"index\": " : ", {\"index\": ";
+      first = false;
+      appendInteger(out, static_cast<std::uint64_t>(c.index));
+      out += ", \"orientation\": ";
+      appendVector(out, c.object->initOrientation.coeffs().data(), 4);
+      out += ", \"probability\": ";
+      appendNumber(out, c.probability);
+      out += ", \"bottom_offset\": ";
+      appendNumber(out, c.object->bottomOffset.z());
+      out += ", \"top_offset\": ";
+      appendNumber(out, c.object->topOffset.z());
+      out += ", \"horizontal_radius\": ";
+      appendNumber(out, c.object->horizontalRadius);
+      out += '}';
+    }
+    out += ']';
+  }
+  out += '}';
+}
+
 void appendUniform(std::string& out, const UniformRandomSampler& sampler) {
   const UniformSamplerParams& p = sampler.params();
   out += "{\"type\": \"uniform\", \"name\": ";
@@ -158,6 +194,9 @@ void appendUniform(std::string& out, const UniformRandomSampler& sampler) {
   if (p.surface) {
     out += ", \"region\": ";
     detail::appendSurfaceRegion(out, sampler);
+  }
+  if (p.resting == UniformSamplerParams::Resting::Stable) {
+    appendResting(out, sampler);
   }
   if (!p.keepOut.empty()) {
     out += ", \"keep_out\": [";
@@ -366,6 +405,10 @@ void appendSceneJson(std::string& out, const SceneResult& scene) {
     }
     out += ", \"attempts\": ";
     appendInteger(out, p.attempts);
+    if (p.restPose != ObjectPlacement::kUpright) {
+      out += ", \"rest_pose\": ";
+      appendInteger(out, static_cast<std::uint64_t>(p.restPose));
+    }
     if (simulated) {
       const PhysicsOutcome& o = scene.physics[i];
       out += ", \"moved\": ";

@@ -167,6 +167,7 @@ placement_samplers::Scene toSceneMsg(const SceneResult& scene) {
     m.sampler = p.sampler;
     m.pose = toPoseMsg(p.position, p.orientation);
     m.attempts = p.attempts;
+    m.rest_pose = p.restPose;
     // Without a simulation the sampled pose is the pose: a unit quaternion, never zeros.
     m.sampled_pose = m.pose;
     if (scene.simulated && i < scene.physics.size()) {

@@ -23,12 +23,12 @@ void SampleContext::addFixture(std::string_view name, const ObjectModel* object,
 }
 
 void SampleContext::addPlacement(std::string_view sampler, const Candidate& candidate,
-                                 std::uint32_t attempts, bool hidden) {
+                                 std::uint32_t attempts, bool hidden, std::int16_t restPose) {
   // Built in place: a temporary, as g++ 12 builds it, is stored in 8-byte parts and copied in
   // 16-byte parts, and each such copy waits for the stores (about a tenth of a Lift scene).
   const ObjectModel* object = candidate.object;
   placements_.emplace_back(object->name, sampler, candidate.orientation, candidate.position, object,
-                           attempts, hidden);
+                           attempts, hidden, restPose);
   entries_.emplace_back(object->name, object, candidate.position, candidate.orientation, false);
   checker_.added(entries_, entries_.size() - 1);
 }

@@ -56,22 +56,46 @@ void UniformRandomSampler::bindSurfaces(const ObjectModel& target, const Eigen::
     selected.push_back(found->surfaces[i]);
   }
   auto surfaces = std::make_shared<const std::vector<SupportSurface>>(std::move(selected));
-  for (Entry& entry : entries_) {
-    const ObjectModel& object = *entry.object;
-    SurfaceDraw::NoFit why;
-    std::optional<SurfaceDraw> draw = SurfaceDraw::make(
-        *surfaces, surfaceInset(object), object.topOffset.z() - object.bottomOffset.z(), &why);
-    if (!draw) {
-      throw ConfigError(noFitMessage(object, why));
-    }
-    if (!objectFrame) {
-      entry.surfaceDraw = std::make_shared<const SurfaceDraw>(std::move(*draw));
-    }
-  }
   boundSurfaces_ = std::move(surfaces);
   foundSurfaces_ = std::move(found);
   selectedIndices_ = std::move(indices);
   boundToObject_ = objectFrame;
+  for (Entry& entry : entries_) {
+    if (entry.poses.empty()) {
+      bindEntrySurfaces(entry);
+      continue;
+    }
+    // A resting pose that fits on no surface is not drawn; one of them must fit.
+    bool any = false;
+    for (Entry& pose : entry.poses) {
+      try {
+        bindEntrySurfaces(pose);
+        any = any || pose.usable;
+      } catch (const ConfigError& e) {
+        pose.usable = false;
+        pose.problem = e.what();
+      }
+    }
+    if (!any) {
+      throw ConfigError(entry.poses.front().problem);
+    }
+  }
+}
+
+void UniformRandomSampler::bindEntrySurfaces(Entry& entry) const {
+  if (!boundSurfaces_) {
+    return;
+  }
+  const ObjectModel& object = *entry.object;
+  SurfaceDraw::NoFit why;
+  std::optional<SurfaceDraw> draw = SurfaceDraw::make(
+      *boundSurfaces_, surfaceInset(object), object.topOffset.z() - object.bottomOffset.z(), &why);
+  if (!draw) {
+    throw ConfigError(noFitMessage(object, why));
+  }
+  if (!boundToObject_) {
+    entry.surfaceDraw = std::make_shared<const SurfaceDraw>(std::move(*draw));
+  }
 }
 
 std::vector<SupportSurface> UniformRandomSampler::surfacesOn(

@@ -93,6 +93,16 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
     throw ConfigError(where + "max_attempts must be at least 1");
   }
   checkShapes(where);
+  if (params_.resting == UniformSamplerParams::Resting::Stable) {
+    if (params_.rotationAxis != 2) {
+      throw ConfigError(where +
+                        "resting: stable turns each object about z after its resting pose: "
+                        "rotation_axis must be z");
+    }
+    if (params_.strategy != UniformSamplerParams::Strategy::Rejection) {
+      throw ConfigError(where + "resting: stable takes strategy rejection only");
+    }
+  }
   axis_ = Eigen::Vector3d::Unit(params_.rotationAxis);
   // free_space's box: the region's bounds, once (a shape's bounds come from its triangles).
   shapeBounds(
@@ -120,38 +130,14 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
       throw ConfigError("sampler " + quoteText(name()) + ": object " + quoteText(object->name) +
                         " is already in this sampler");
     }
-    Entry entry{object, effectiveRange(*object, 0), effectiveRange(*object, 1), nullptr, nullptr};
-    for (int axis = 0; axis < 2 && !params_.region && !params_.surface; ++axis) {
-      const Eigen::Vector2d& r = axis == 0 ? entry.x : entry.y;
-      if (r[0] > r[1]) {
-        const char* key = axis == 0 ? "x_range" : "y_range";
-        std::ostringstream out;
-        out << "sampler " << quoteText(name()) << ": " << key << " "
-            << rangeText(axis == 0 ? params_.xRange : params_.yRange)
-            << " leaves no room for object " << quoteText(object->name) << " (horizontal radius "
-            << object->horizontalRadius
-            << " m) with ensure_object_boundary_in_range on: the range must be at least "
-            << 2.0 * object->horizontalRadius << " m wide";
-        throw ConfigError(out.str());
-      }
+    Entry entry = makeEntry(object);
+    if (params_.resting == UniformSamplerParams::Resting::Stable) {
+      addRestingPoses(entry);
     }
-    if (params_.surface) {
-      if (boundSurfaces_) {
-        SurfaceDraw::NoFit why;
-        std::optional<SurfaceDraw> draw =
-            SurfaceDraw::make(*boundSurfaces_, surfaceInset(*object),
-                              object->topOffset.z() - object->bottomOffset.z(), &why);
-        if (!draw) {
-          throw ConfigError(noFitMessage(*object, why));
-        }
-        if (!boundToObject_) {
-          entry.surfaceDraw = std::make_shared<const SurfaceDraw>(std::move(*draw));
-        }
-      }
-    } else if (params_.region || !params_.keepOut.empty()) {
-      entry.draw = regionDraw(*object);
+    if (entry.poses.empty()) {
+      bindEntrySurfaces(entry);
     }
-    entries_.push_back(entry);
+    entries_.push_back(std::move(entry));
   }
 }
 
@@ -237,6 +223,9 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
 
 bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
                                     const Eigen::Vector3d& base, bool onTop) const {
+  if (!entry.poses.empty()) {
+    return placeOneResting(context, entry, base, onTop);
+  }
   if (params_.surface) {
     return placeOnSurface(context, entry, base);
   }

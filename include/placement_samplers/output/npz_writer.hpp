@@ -26,6 +26,9 @@ struct NpzOptions {
   /// [rad] and `fallen` [K, n] bool (NaN, NaN, false where a scene was not simulated); with
   /// settle also `sampled_position` [K, n, 3] and `sampled_orientation` [K, n, 4].
   PhysicsMode physics = PhysicsMode::None;
+  /// Also `rest_pose` [K, n] int16: each placement's resting pose under resting: stable (-1:
+  /// as configured, or not placed).
+  bool restPoses = false;
 };
 
 /// Writes scenes into numpy's .npz format (a stored zip of .npy arrays, what numpy.load reads),

@@ -21,14 +21,19 @@ struct ObjectPlacement {
   /// Every member, so that std::vector::emplace_back builds a placement in place.
   ObjectPlacement(std::string_view name, std::string_view sampler,
                   const Eigen::Quaterniond& orientation, const Eigen::Vector3d& position,
-                  const ObjectModel* object, std::uint32_t attempts, bool hidden)
+                  const ObjectModel* object, std::uint32_t attempts, bool hidden,
+                  std::int16_t restPose = kUpright)
       : name(name),
         sampler(sampler),
         orientation(orientation),
         position(position),
         object(object),
         attempts(attempts),
-        hidden(hidden) {}
+        hidden(hidden),
+        restPose(restPose) {}
+
+  /// restPose of an object placed as configured (resting: upright, or no resting pose found).
+  static constexpr std::int16_t kUpright = -1;
 
   std::string_view name;     ///< object name: `object->name`
   std::string_view sampler;  ///< name of the uniform sampler that placed it
@@ -37,6 +42,9 @@ struct ObjectPlacement {
   const ObjectModel* object = nullptr;                 ///< geometry
   std::uint32_t attempts = 0;                          ///< samples drawn, the accepted one included
   bool hidden = false;  ///< placed by hide(): far away, not to be drawn
+  /// Under resting: stable, the index of its resting pose as --describe lists them; @p object
+  /// is then the object in that pose (its bounds). kUpright otherwise.
+  std::int16_t restPose = kUpright;
 };
 
 /// Why a scene could not be completed.

@@ -32,7 +32,7 @@ class SampleContext {
   /// Records @p candidate, accepted by sampler @p sampler after @p attempts samples, as a
   /// placement and makes it an obstacle for the following ones.
   void addPlacement(std::string_view sampler, const Candidate& candidate, std::uint32_t attempts,
-                    bool hidden);
+                    bool hidden, std::int16_t restPose = ObjectPlacement::kUpright);
 
   /// The fixture or placed object called @p name, or nullptr.
   const PlacedEntry* find(const std::string& name) const;

@@ -51,6 +51,12 @@ struct UniformSamplerParams {
   /// distribution, past the random-packing limit)
   enum class Strategy { Rejection, FreeSpace, Dense };
   Strategy strategy = Strategy::Rejection;
+  /// Upright: the objects as configured (robosuite's); Stable: each attempt first draws one of
+  /// the object's resting poses by probability (README, "Resting poses").
+  enum class Resting { Upright, Stable };
+  Resting resting = Resting::Upright;
+  double minProbability = 0.02;  ///< Stable: rarer resting poses are dropped
+  bool allowRolling = false;     ///< Stable: also the poses that roll (a cylinder on its side)
 };
 
 /// robosuite's UniformRandomSampler: rejection sampling of x and y in ranges around a
@@ -105,6 +111,14 @@ class UniformRandomSampler : public PlacementSampler {
   /// @throw ConfigError as selectSurfaces()
   std::vector<SupportSurface> surfacesOn(const PlacedEntry& target, const RequestSurfaces* request,
                                          std::vector<std::size_t>* indices = nullptr) const;
+  /// One resting pose of an object under resting: stable.
+  struct RestingChoice {
+    std::int16_t index = 0;               ///< as --describe lists them (ObjectPlacement)
+    const ObjectModel* object = nullptr;  ///< the object in that pose (initOrientation: the pose)
+    double probability = 0.0;             ///< after min_probability, renormalised
+  };
+  /// @p object's resting poses (matched by name) under resting: stable; empty otherwise.
+  std::vector<RestingChoice> restingChoices(const ObjectModel& object) const;
   /// True when bindSurfaces() found the surface region's surfaces.
   bool surfacesBound() const { return boundSurfaces_ != nullptr; }
   /// Every surface bindSurfaces() found on the target (nullptr: none bound), at the object's
@@ -121,12 +135,19 @@ class UniformRandomSampler : public PlacementSampler {
  private:
   struct Entry {
     ObjectPtr object;
-    Eigen::Vector2d x;  ///< effective x interval [m]
-    Eigen::Vector2d y;  ///< effective y interval [m]
+    Eigen::Vector2d x = Eigen::Vector2d::Zero();  ///< effective x interval [m]
+    Eigen::Vector2d y = Eigen::Vector2d::Zero();  ///< effective y interval [m]
     /// The inset region's draws when there is a region shape or a keep-out zone (else x, y).
     std::shared_ptr<const RegionDraw> draw;
     /// A surface region bound to a configured fixture: the draws on its surfaces.
     std::shared_ptr<const SurfaceDraw> surfaceDraw;
+    /// resting: stable: one entry per resting pose (its object: the object in that pose),
+    /// drawn by @ref cumulative; empty: the object as configured.
+    std::vector<Entry> poses;
+    std::vector<double> cumulative;  ///< running sums of the poses' probabilities
+    std::int16_t restPose = ObjectPlacement::kUpright;  ///< a pose entry's index
+    bool usable = true;   ///< a pose entry the region has room for (else its attempts fail)
+    std::string problem;  ///< why not
   };
 
   Eigen::Quaterniond sampleOrientation(Engine& engine, const ObjectModel& object) const;
@@ -143,6 +164,18 @@ class UniformRandomSampler : public PlacementSampler {
   /// placeOne() for a region shape or keep-out zones (shaped_placement.cpp).
   bool placeOneShaped(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                       bool onTop) const;
+  /// The entry of @p object without its resting poses: ranges and draws (sampler_entries.cpp).
+  /// @throw ConfigError when the region leaves it no room
+  Entry makeEntry(const ObjectPtr& object);
+  /// The draws of @p entry on the bound surfaces (when there are bound surfaces).
+  /// @throw ConfigError when it fits on none
+  void bindEntrySurfaces(Entry& entry) const;
+  /// @p entry's resting poses under resting: stable (sampler_entries.cpp).
+  /// @throw ConfigError when the region has room for none of them
+  void addRestingPoses(Entry& entry);
+  /// placeOne() under resting: stable (resting_placement.cpp).
+  bool placeOneResting(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
+                       bool onTop) const;
   /// placeOne() for a surface region (surface_placement.cpp).
   bool placeOnSurface(SampleContext& context, const Entry& entry,
                       const Eigen::Vector3d& base) const;
