@@ -29,6 +29,8 @@ std::uint8_t kindMsg(Violation::Kind kind) {
       return PoseViolation::REFERENCE_MISSING;
     case Violation::Kind::BadPose:
       return PoseViolation::BAD_POSE;
+    case Violation::Kind::RestPose:
+      return PoseViolation::REST_POSE;
   }
   return PoseViolation::UNKNOWN_OBJECT;
 }

@@ -133,21 +133,24 @@ class Validator {
                                 ? Eigen::Quaterniond(pose.orientation.coeffs() / norm)
                                 : pose.orientation;
     const UniformSamplerParams& params = sampler.params();
+    // resting: stable: the resting pose it is in (its bounds decide region and height).
+    const ObjectModel& posed = restingModel(verdict, sampler, object, candidate.orientation);
+    candidate.object = &posed;
     if (base == nullptr) {
       add(verdict, Violation::Kind::ReferenceMissing, s, reference.name, 0.0,
           "object " + quoteText(object.name) + ": reference " + quoteText(reference.name) +
               " of sampler " + quoteText(s) +
               " is neither a fixture nor an object placed before it");
     } else if (params.surface) {
-      checkSurface(verdict, sampler, object, *base, candidate);
+      checkSurface(verdict, sampler, posed, *base, candidate);
     } else {
-      const double outside = distanceOutsideRegion(sampler, object, *base, pose.position);
+      const double outside = distanceOutsideRegion(sampler, posed, *base, pose.position);
       if (outside > options_.regionTolerance) {
         add(verdict, Violation::Kind::OutsideRegion, s, "", outside,
             "object " + quoteText(object.name) + " is outside the region of sampler " +
                 quoteText(s) + " by " + metres(outside));
       }
-      const double z = sampler.height(object, *base, onTop);
+      const double z = sampler.height(posed, *base, onTop);
       const double off = std::abs(pose.position.z() - z);
       if (!(off <= options_.heightTolerance)) {
         add(verdict, Violation::Kind::Height, s, "", off,
@@ -163,6 +166,30 @@ class Validator {
       }
     }
     context_.addPlacement(s, candidate, 1, params.hides);
+  }
+
+  /// Under resting: stable, @p object in the resting pose that @p orientation is (the pose
+  /// turned about z); a RestPose violation and @p object itself when it is in none. @p object
+  /// otherwise.
+  const ObjectModel& restingModel(ObjectVerdict& verdict, const UniformRandomSampler& sampler,
+                                  const ObjectModel& object,
+                                  const Eigen::Quaterniond& orientation) {
+    const std::vector<UniformRandomSampler::RestingChoice> choices = sampler.restingChoices(object);
+    if (choices.empty()) {
+      return object;
+    }
+    constexpr double kTurnTolerance = 1e-6;  // of the quaternion's x and y parts
+    for (const UniformRandomSampler::RestingChoice& c : choices) {
+      const Eigen::Quaterniond turn = orientation * c.object->initOrientation.inverse();
+      if (std::abs(turn.x()) < kTurnTolerance && std::abs(turn.y()) < kTurnTolerance) {
+        return *c.object;
+      }
+    }
+    add(verdict, Violation::Kind::RestPose, sampler.name(), "", 0.0,
+        "object " + quoteText(object.name) + " is in none of its " +
+            countText(choices.size(), "resting pose") + " (each turned about z only) of sampler " +
+            quoteText(sampler.name()));
+    return object;
   }
 
   /// A surface region's checks of @p candidate: on a selected surface that the object fits
@@ -358,6 +385,8 @@ const char* violationKindName(Violation::Kind kind) {
       return "reference_missing";
     case Violation::Kind::BadPose:
       return "bad_pose";
+    case Violation::Kind::RestPose:
+      return "rest_pose";
   }
   return "unknown_object";
 }

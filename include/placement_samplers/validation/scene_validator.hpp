@@ -27,6 +27,7 @@ struct Violation {
     Duplicate,         ///< given more than once (the first is validated)
     ReferenceMissing,  ///< its sampler's reference (@ref other) is not in the scene
     BadPose,           ///< a coordinate is not finite or too large, or the quaternion is zero
+    RestPose,          ///< resting: stable, and in none of the object's resting poses
   };
   Kind kind = Kind::Unknown;
   /// The object's sampler ("" for Unknown, Duplicate, BadPose).
