@@ -4,6 +4,8 @@
 
 #include "../../test/unit/slab_mesh.hpp"
 #include "bench_support.hpp"
+
+#include <ctime>
 #include "placement_samplers/geometry/support_surfaces.hpp"
 #include "placement_samplers/geometry/urdf_geometry.hpp"
 
@@ -17,29 +19,48 @@ ps::Shape meshShape(ps::Mesh mesh) {
   return shape;
 }
 
+double threadSeconds() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// Median wall-clock and thread CPU time of one call [ms], over options.repetitions blocks of
+/// calls lasting about options.secondsPerRep each.
 void row(const Options& options, const char* name, std::size_t triangles,
          const std::vector<ps::Shape>& shapes) {
-  const ps::SurfaceSearch found = ps::findSupportSurfaces(shapes, Eigen::Isometry3d::Identity());
-  const double ns = nsPerOp(options, [&](std::uint64_t n) {
-    for (std::uint64_t i = 0; i < n; ++i) {
-      gSink = gSink +
-              static_cast<double>(
-                  ps::findSupportSurfaces(shapes, Eigen::Isometry3d::Identity()).surfaces.size());
+  const auto call = [&] {
+    return ps::findSupportSurfaces(shapes, Eigen::Isometry3d::Identity()).surfaces.size();
+  };
+  const std::size_t surfaces = call();
+  const Clock::time_point start = Clock::now();
+  call();
+  const double once = std::chrono::duration<double>(Clock::now() - start).count();
+  const int n = std::max(1, static_cast<int>(options.secondsPerRep / std::max(once, 1e-9)));
+  std::vector<double> wall;
+  std::vector<double> cpu;
+  for (int r = 0; r < options.repetitions; ++r) {
+    const Clock::time_point w0 = Clock::now();
+    const double c0 = threadSeconds();
+    for (int i = 0; i < n; ++i) {
+      gSink = gSink + static_cast<double>(call());
     }
-  });
-  std::printf("%-42s %7zu %9zu %9zu %12.3f\n", name, shapes.size(), triangles,
-              found.surfaces.size(), ns * 1e-6);
+    cpu.push_back((threadSeconds() - c0) * 1e3 / n);
+    wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - w0).count() / n);
+  }
+  std::printf("%-42s %7zu %9zu %9zu %12.3f %12.3f\n", name, shapes.size(), triangles, surfaces,
+              median(wall), median(cpu));
 }
 
 }  // namespace
 
 void benchSurfaces(const Options& options) {
   std::printf(
-      "\nSupport surfaces: findSupportSurfaces per call, one thread (median of %d), target "
-      "<= 50 ms for 100,000 triangles\n",
+      "\nSupport surfaces: findSupportSurfaces per call, one thread, wall-clock and thread CPU "
+      "time (median of %d), target <= 50 ms for 100,000 triangles\n",
       options.repetitions);
-  std::printf("%-42s %7s %9s %9s %12s\n", "geometry", "shapes", "triangles", "surfaces",
-              "time [ms]");
+  std::printf("%-42s %7s %9s %9s %12s %12s\n", "geometry", "shapes", "triangles", "surfaces",
+              "wall [ms]", "cpu [ms]");
   for (int n : {68, 222}) {
     ps::Mesh slab = ps::test::makeSlabMesh(1.2, 0.8, -0.05, 0.05, n);
     const std::size_t triangles = slab.triangles.size();

@@ -90,6 +90,7 @@ void addMesh(const Mesh& mesh, const Eigen::Isometry3d& pose, double cosToleranc
   }
   const int meshIndex = static_cast<int>(parts.meshes.size());
   std::vector<int> up;
+  parts.triangles.reserve(parts.triangles.size() + world.triangles.size());
   for (std::size_t i = 0; i < world.triangles.size(); ++i) {
     const std::array<int, 3>& t = world.triangles[i];
     const Eigen::Vector3d& p0 = world.vertices[t[0]];

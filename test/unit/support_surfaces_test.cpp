@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -522,6 +523,46 @@ TEST(SupportSurfaces, RoughMeshOfTiltedTrianglesEnds) {
   for (const SupportSurface& s : search.surfaces) {
     expectWellFormed(s);
   }
+}
+
+TEST(SupportSurfaces, RandomTriangleSoupsAndBoxesGiveWellFormedSurfaces) {
+  // Overlapping triangles of both windings, shared and repeated vertices, near-level heights,
+  // boxes through them: whatever comes out is well formed.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-0.5, 0.5);
+  std::uniform_int_distribution<int> level(0, 3);
+  std::size_t found = 0;
+  for (int round = 0; round < 20; ++round) {
+    Mesh soup;
+    for (int v = 0; v < 60; ++v) {
+      soup.vertices.emplace_back(coordinate(random), coordinate(random),
+                                 0.1 * level(random) + (v % 7 == 0 ? 1e-7 : 0.0));
+    }
+    std::uniform_int_distribution<int> vertex(0, 59);
+    for (int t = 0; t < 150; ++t) {
+      soup.triangles.emplace_back(vertex(random), vertex(random), vertex(random));
+    }
+    std::vector<Shape> shapes = {meshShape(soup)};
+    for (int b = 0; b < 4; ++b) {
+      shapes.push_back(boxAt(Eigen::Vector3d(0.2, 0.3, 0.25),
+                             Eigen::Vector3d(coordinate(random), coordinate(random), 0.1 * b)));
+    }
+    SurfaceOptions options;
+    options.minArea = 0.0;
+    const SurfaceSearch search = find(shapes, options);
+    found += search.surfaces.size();
+    for (std::size_t i = 0; i < search.surfaces.size(); ++i) {
+      const SupportSurface& surface = search.surfaces[i];
+      expectWellFormed(surface);
+      EXPECT_GE(surface.outer.size(), 3u);
+      EXPECT_TRUE(std::isfinite(surface.z));
+      EXPECT_GT(surface.clearance, 0.0);
+      if (i > 0) {
+        EXPECT_LE(search.surfaces[i - 1].z, surface.z);
+      }
+    }
+  }
+  EXPECT_GT(found, 100u);
 }
 
 TEST(SupportSurfaces, BrokenMeshesGiveWhatIsThere) {

@@ -12,9 +12,10 @@ namespace placement_samplers {
 /// shelf board, a bin's floor, a counter around its sink, a box's top.
 struct SupportSurface {
   /// Height [m] in the frame the shapes were posed in. A group of facets tilted within the
-  /// normal tolerance takes its highest point, so that nothing placed on it starts inside it.
+  /// normal tolerance takes its highest point, so that nothing placed on it starts inside it;
+  /// its outline is its projection on x-y.
   double z = 0.0;
-  /// The outline in x-y [m], counter-clockwise, no vertex repeated.
+  /// The outline in x-y [m], counter-clockwise, no vertex repeated, collinear vertices removed.
   std::vector<Eigen::Vector2d> outer;
   /// Holes (a sink in a counter, the footprint of a wall standing on a floor), clockwise [m].
   std::vector<std::vector<Eigen::Vector2d>> holes;
@@ -45,11 +46,30 @@ struct SurfaceSearch {
   double largestDroppedArea = 0.0;
 };
 
-/// The support surfaces of @p shapes (one object's collision geometry) placed at @p pose: boxes'
-/// faces and cylinders' caps that face up (a cap as an inscribed polygon, so every point of it
-/// is on the cap), meshes' up-facing triangles; coplanar facets that touch merged into one
-/// polygon with its holes; geometry standing on a surface cut out of it; clearance from the
-/// geometry above. Spheres and capsules have none.
+/// The support surfaces of @p shapes (one object's collision geometry) placed at @p pose, in
+/// the frame of @p pose:
+/// - facets: boxes' faces and cylinders' caps whose outward normal is within
+///   SurfaceOptions::normalTolerance of +z (a cap as the inscribed regular 64-gon, so every
+///   point of it is on the cap: 0.9984 of the disc's area), and meshes' triangles likewise
+///   (normal from the winding, counter-clockwise seen from outside). Spheres and capsules have
+///   none.
+/// - merging: facets within 1e-6 m of one plane that touch become one polygon, holes kept (a
+///   counter's sink); level facets within 1e-6 m in height all take the highest. A mesh's
+///   triangles are joined through their shared edges (vertices in one 1e-9 m cell welded), so
+///   that a mesh of 100,000 triangles needs no polygon union per triangle.
+/// - standing geometry: every other part that reaches more than 1e-6 m above a surface and
+///   begins less than SurfaceOptions::standingGap above it (a bin's wall on its floor, a panel
+///   through a shelf board) is cut out: a primitive as the convex hull of its projection (round
+///   ones by circumscribed 32-gons), a mesh triangle as its projection, and a mesh's
+///   cross-section just above the surface (for walls whose own projection has no area).
+/// - clearance: how far above the surface the lowest part begins among those beginning at
+///   least standingGap above it whose footprints overlap it (with area: touching edges do not
+///   count), footprints as above.
+/// Cuts and clearance take whole parts, so they err on the side of less room. Surfaces of less
+/// than SurfaceOptions::minArea are dropped. Degenerate input is no error: degenerate triangles
+/// and loops are left out, geometry beyond 1e12 m ignored, meshes' broken groups (folds,
+/// non-manifold edges) rebuilt from their triangles, open loops of open meshes' cross-sections
+/// left out.
 SurfaceSearch findSupportSurfaces(const std::vector<Shape>& shapes, const Eigen::Isometry3d& pose,
                                   const SurfaceOptions& options = SurfaceOptions());
 
