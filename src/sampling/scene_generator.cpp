@@ -342,11 +342,13 @@ void SceneGenerator::sampleInto(const PreparedRequest& request, std::uint64_t se
     Worker worker(request, config_->collisionMargin, threads);
     worker.setDeadline(deadline);
     worker.setProgress(progress);
-    // Small chunks keep the threads balanced when some scenes take many attempts.
-    constexpr std::uint64_t kChunk = Worker::kChunk;
-    for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
-         begin = next.fetch_add(kChunk)) {
-      const std::uint64_t end = std::min(count, begin + kChunk);
+    // Small chunks keep the threads balanced when some scenes take many attempts. A simulated
+    // scene takes milliseconds: one at a time, so that the threads finish the scenes nearly
+    // in order (a cancelled range keeps the scenes before the first one not sampled).
+    const std::uint64_t chunk = request.physicsModel ? 1 : Worker::kChunk;
+    for (std::uint64_t begin = next.fetch_add(chunk); begin < count;
+         begin = next.fetch_add(chunk)) {
+      const std::uint64_t end = std::min(count, begin + chunk);
       worker.runChunk(seed, first + begin, static_cast<std::size_t>(end - begin), results + begin);
     }
   };
