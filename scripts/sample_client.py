@@ -90,9 +90,9 @@ def run_action(args, fields):
         bar.set_postfix_str("%d failed" % f.scenes_failed, refresh=False)
         bar.refresh()
 
-    client.send_goal(SampleScenesGoal(**fields), feedback_cb=feedback)
     interrupted = False
     try:
+        client.send_goal(SampleScenesGoal(**fields), feedback_cb=feedback)
         while not client.wait_for_result(rospy.Duration(0.1)):
             pass
     except KeyboardInterrupt:
