@@ -178,7 +178,7 @@ void RegionHandles::insert(const std::string& name, const Marker& marker,
     im.pose.position.x = at.x();
     im.pose.position.y = at.y();
     im.pose.orientation = yawQuaternion(pose.yaw);
-    im.scale = 0.25;
+    im.scale = 0.15;
     im.description = marker.shown.sampler + (marker.shown.shape.keepOut ? " keep_out" : "");
     visual.type = visualization_msgs::Marker::TRIANGLE_LIST;
     visual.scale.x = visual.scale.y = visual.scale.z = 1.0;
@@ -208,10 +208,10 @@ void RegionHandles::insert(const std::string& name, const Marker& marker,
     im.pose.position.x = at.x();
     im.pose.position.y = at.y();
     im.pose.orientation = yawQuaternion(pose.yaw);
-    im.scale = 0.1;
+    im.scale = 0.06;
     im.description = marker.handle;
     visual.type = visualization_msgs::Marker::CUBE;
-    visual.scale.x = visual.scale.y = visual.scale.z = 0.025;
+    visual.scale.x = visual.scale.y = visual.scale.z = 0.03;
     visual.color = colour(1.0f, 0.8f, 0.1f, 0.9f);
     // Along the side it sizes: x for size_x and radii, y for size_y and the inner radius.
     control.name = "resize";
