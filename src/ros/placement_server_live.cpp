@@ -82,5 +82,14 @@ void PlacementServer::startLive(const std::shared_ptr<const SceneGenerator>& gen
   action_->start();
 }
 
+void PlacementServer::advertiseLive() {
+  postCallback(&lightQueue_, [this] {
+    std::lock_guard<std::recursive_mutex> serving(serveMutex_);
+    diagnostics_->restart();
+    reconfigure_->restart();
+    handles_->restart();
+  });
+}
+
 }  // namespace ros_interface
 }  // namespace placement_samplers

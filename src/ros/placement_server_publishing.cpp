@@ -103,10 +103,12 @@ void PlacementServer::watchLoop(ros::WallDuration period) {
                       << ": the master restarted (new run_id); registering services and topics "
                          "again");
       advertise();
+      advertiseLive();
     } else if (now && !up) {
       ROS_WARN_STREAM(ros::this_node::getName()
                       << ": the master is back; registering services and topics again");
       advertise();
+      advertiseLive();
     } else if (!now && up) {
       ROS_WARN_STREAM(ros::this_node::getName()
                       << ": lost the master; waiting for it to come back");

@@ -52,9 +52,17 @@ Reconfigure::Reconfigure(const ros::NodeHandle& handle, Apply apply)
 void Reconfigure::start(const SceneConfig& served) {
   boost::recursive_mutex::scoped_lock lock(mutex_);
   served_ = knobsOf(served);
-  // The server reads each knob's parameter (the configuration's, or the .cfg's default, which
-  // is the configuration's default) and writes them all back.
+  restart();
+}
+
+void Reconfigure::restart() {
+  boost::recursive_mutex::scoped_lock lock(mutex_);
+  server_.reset();
+  // The server reads each knob's parameter and writes them all back; then it shows the knobs
+  // served (the same, unless the parameters went with a master), so its first call of the
+  // callback changes nothing.
   server_ = std::make_unique<dynamic_reconfigure::Server<PlacementServerConfig>>(mutex_, handle_);
+  server_->updateConfig(served_);
   server_->setCallback(
       [this](PlacementServerConfig& config, std::uint32_t level) { onChange(config, level); });
 }

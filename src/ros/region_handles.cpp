@@ -126,16 +126,33 @@ std::vector<ShownShape> handleShapes(const SceneGenerator& generator) {
 
 RegionHandles::RegionHandles(const std::string& topicNamespace, ros::CallbackQueue* edits,
                              Apply apply, std::function<void()> sampleNow)
-    : edits_(edits), apply_(std::move(apply)), sampleNow_(std::move(sampleNow)) {
+    : topicNamespace_(topicNamespace),
+      edits_(edits),
+      apply_(std::move(apply)),
+      sampleNow_(std::move(sampleNow)) {
   // Its own thread: feedback is read while every other thread is busy.
   server_ =
-      std::make_unique<interactive_markers::InteractiveMarkerServer>(topicNamespace, "", true);
+      std::make_unique<interactive_markers::InteractiveMarkerServer>(topicNamespace_, "", true);
   menu_.insert("sample now", [this](const visualization_msgs::InteractiveMarkerFeedbackConstPtr&) {
     sampleNow_();
   });
 }
 
 RegionHandles::~RegionHandles() { server_.reset(); }
+
+void RegionHandles::restart() {
+  server_.reset();
+  server_ =
+      std::make_unique<interactive_markers::InteractiveMarkerServer>(topicNamespace_, "", true);
+  std::shared_ptr<const SceneGenerator> generator;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    generator = generator_;
+  }
+  if (generator) {
+    show(generator);
+  }
+}
 
 void RegionHandles::show(const std::shared_ptr<const SceneGenerator>& generator) {
   std::map<std::string, Marker> markers;

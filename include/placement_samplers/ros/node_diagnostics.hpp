@@ -47,6 +47,9 @@ class NodeDiagnostics {
   /// Publishes on /diagnostics every ~diagnostic_period (1 s), from a timer on the callback
   /// queue of @p queueHandle (a private handle).
   void start(const ros::NodeHandle& queueHandle);
+  /// Advertises /diagnostics again (a new master knows nothing of the old one's topics). From
+  /// the thread of start()'s queue.
+  void restart();
 
   void callStarted();
   void callFinished(const CallRecord& call);
@@ -79,6 +82,7 @@ class NodeDiagnostics {
   bool masterUp_ = true;
 
   std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::NodeHandle queueHandle_;
   ros::WallTimer timer_;
 };
 

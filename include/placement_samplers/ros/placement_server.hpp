@@ -133,6 +133,9 @@ class PlacementServer {
   /// Starts the diagnostics' timer, the knobs, the region handles and the ~sample action
   /// (placement_server_live.cpp).
   void startLive(const std::shared_ptr<const SceneGenerator>& generator);
+  /// Registers /diagnostics, the knobs and the region handles again, from the light thread
+  /// (their callbacks run there). The ~sample action is not: its goals hold its server.
+  void advertiseLive();
   void scheduleTrim(std::uint64_t placements);
   void advertise();
   void publishLoop();

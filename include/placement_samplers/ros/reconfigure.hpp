@@ -41,6 +41,9 @@ class Reconfigure {
 
   /// Starts the server (it writes each knob's value to the parameter server) showing @p served.
   void start(const SceneConfig& served);
+  /// Serves again, with the knobs shown (after a master restart: the new master has none of
+  /// the old one's services and parameters). From the thread of the handle's queue.
+  void restart();
   /// After a ~reload or a region handle: shows the knobs of the configuration now served.
   void show(const SceneConfig& served);
 

@@ -54,6 +54,8 @@ class RegionHandles {
 
   /// Shows the handles of @p generator's configuration, replacing what was shown.
   void show(const std::shared_ptr<const SceneGenerator>& generator);
+  /// Serves the handles again (after a master restart), from the edits' queue.
+  void restart();
 
  private:
   struct Marker {
@@ -65,6 +67,7 @@ class RegionHandles {
   void edit(const std::string& sampler, const HandleShape& edited);
   void insert(const std::string& name, const Marker& marker, const std::string& frameId);
 
+  std::string topicNamespace_;
   ros::CallbackQueue* edits_;
   Apply apply_;
   std::function<void()> sampleNow_;
