@@ -38,14 +38,14 @@ void NodeDiagnostics::start(const ros::NodeHandle& queueHandle) {
   queueHandle_ = queueHandle;
   restart();
   // The updater publishes when its period has passed; the timer asks more often than that.
-  timer_ = queueHandle_.createWallTimer(ros::WallDuration(0.1),
-                                        [this](const ros::WallTimerEvent&) { updater_->update(); });
+  timer_ = queueHandle_->createWallTimer(
+      ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) { updater_->update(); });
 }
 
 void NodeDiagnostics::restart() {
   // Publishes on the global /diagnostics; reads ~diagnostic_period from the private namespace.
   updater_.reset();
-  updater_ = std::make_unique<diagnostic_updater::Updater>(ros::NodeHandle(), queueHandle_);
+  updater_ = std::make_unique<diagnostic_updater::Updater>(ros::NodeHandle(), *queueHandle_);
   updater_->setHardwareID(ros::this_node::getName());
   updater_->add("placement server",
                 [this](diagnostic_updater::DiagnosticStatusWrapper& status) { fill(status); });

@@ -82,7 +82,7 @@ class NodeDiagnostics {
   bool masterUp_ = true;
 
   std::unique_ptr<diagnostic_updater::Updater> updater_;
-  ros::NodeHandle queueHandle_;
+  std::optional<ros::NodeHandle> queueHandle_;  // set by start(): a handle needs ros::init()
   ros::WallTimer timer_;
 };
 
