@@ -3,6 +3,11 @@
 
 usage: rosrun placement_samplers sample_client.py [--service NAME] [--seed S]
        [--scenes K] [--first-scene N] [--sampler NAME] [--physics MODE] [--dry-run]
+       [--action]
+
+With --action the request goes to the node's ~sample action instead: a progress bar on
+stderr while it samples, and Ctrl-C cancels the goal (the scenes done so far are printed,
+exit status 130).
 """
 import argparse
 import sys
@@ -43,8 +48,18 @@ def main():
                         help="none, check or settle; default: as configured")
     parser.add_argument("--dry-run", action="store_true", help="broadcast nothing")
     parser.add_argument("--timeout", type=float, default=30.0, help="wait for the service [s]")
+    parser.add_argument("--action", action="store_true",
+                        help="use the node's ~sample action (next to --service): a progress "
+                             "bar, and Ctrl-C cancels")
     args = parser.parse_args(rospy.myargv()[1:])
 
+    fields = dict(seed=args.seed, num_scenes=args.scenes, first_scene=args.first_scene,
+                  sampler=args.sampler, dry_run=args.dry_run,
+                  physics=PHYSICS.get(args.physics, SamplePlacementsRequest.PHYSICS_DEFAULT))
+    if args.action:
+        # Ctrl-C must reach the code below (to cancel the goal), not stop rospy at once.
+        rospy.init_node("placement_sample_client", anonymous=True, disable_signals=True)
+        return run_action(args, fields)
     rospy.init_node("placement_sample_client", anonymous=True)
     try:
         rospy.wait_for_service(args.service, timeout=args.timeout)
@@ -52,12 +67,54 @@ def main():
         print("service %s is not available" % args.service, file=sys.stderr)
         return 2
     call = rospy.ServiceProxy(args.service, SamplePlacements)
-    request = SamplePlacementsRequest(seed=args.seed, num_scenes=args.scenes,
-                                      first_scene=args.first_scene,
-                                      sampler=args.sampler, dry_run=args.dry_run,
-                                      physics=PHYSICS.get(args.physics,
-                                                          SamplePlacementsRequest.PHYSICS_DEFAULT))
-    response = call(request)
+    response = call(SamplePlacementsRequest(**fields))
+    print_answer(args, response)
+    return 0 if response.success else 1
+
+
+def run_action(args, fields):
+    """Sends the request as a goal of ~sample with a progress bar; Ctrl-C cancels it."""
+    import actionlib
+    from placement_samplers.msg import SampleScenesAction, SampleScenesGoal
+    from tqdm import tqdm
+
+    name = args.service.rsplit("/", 1)[0] + "/sample"
+    client = actionlib.SimpleActionClient(name, SampleScenesAction)
+    if not client.wait_for_server(rospy.Duration(args.timeout)):
+        print("action %s is not available" % name, file=sys.stderr)
+        return 2
+    bar = tqdm(total=max(args.scenes, 1), unit="scene", file=sys.stderr, dynamic_ncols=True)
+
+    def feedback(f):
+        bar.n = f.scenes_done
+        bar.set_postfix_str("%d failed" % f.scenes_failed, refresh=False)
+        bar.refresh()
+
+    interrupted = False
+    try:
+        client.send_goal(SampleScenesGoal(**fields), feedback_cb=feedback)
+        while not client.wait_for_result(rospy.Duration(0.1)):
+            pass
+    except KeyboardInterrupt:
+        # The node stops at the next scene and answers the scenes done so far.
+        interrupted = True
+        client.cancel_goal()
+        client.wait_for_result(rospy.Duration(args.timeout))
+    result = client.get_result()
+    if result is not None:
+        bar.n = len(result.scenes)
+    bar.close()
+    if result is None:
+        print("no result from %s" % name, file=sys.stderr)
+        return 2
+    print_answer(args, result)
+    if interrupted:
+        return 130
+    return 0 if result.success else 1
+
+
+def print_answer(args, response):
+    """The service's response or the action's result (the same fields)."""
     print("success: %s  seed: %d  frame: %s" % (response.success, response.seed, response.frame_id))
     if response.message:
         print("message: %s" % response.message)
@@ -74,7 +131,6 @@ def main():
                 line += "  moved %.4f m  turned %.3f rad%s" % (p.moved, p.turned,
                                                               "  FALLEN" if p.fallen else "")
             print(line)
-    return 0 if response.success else 1
 
 
 if __name__ == "__main__":

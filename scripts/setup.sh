@@ -38,6 +38,15 @@ PS_PACKAGES=(
   libtinyxml2-dev
   # Boost.Geometry (header-only) merges and cuts the polygons of support surfaces.
   libboost-dev
+  # The node's ~sample action (actionlib; rospy's client in sample_client.py --action), its
+  # health on /diagnostics, its live knobs (dynamic_reconfigure: the .cfg generator, the C++
+  # server, dynparam) and the region handles in rviz (interactive_markers).
+  libactionlib-dev python3-actionlib ros-actionlib-msgs libactionlib-msgs-dev python3-actionlib-msgs
+  libdiagnostic-updater-dev ros-diagnostic-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  libinteractive-markers-dev python3-interactive-markers
+  # sample_client.py --action draws its progress bar with tqdm.
+  python3-tqdm
 )
 
 ps_sudo() {

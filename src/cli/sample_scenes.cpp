@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include <iostream>
 #include <string>
 #include <vector>
@@ -8,5 +10,8 @@
 int main(int argc, char** argv) {
   placement_samplers::keepFreedMemoryForBatches();
   const std::vector<std::string> args(argv + 1, argv + argc);
-  return placement_samplers::runSampleScenes(args, std::cout, std::cerr);
+  placement_samplers::Terminals terminals;
+  terminals.out = ::isatty(STDOUT_FILENO) == 1;
+  terminals.err = ::isatty(STDERR_FILENO) == 1;
+  return placement_samplers::runSampleScenes(args, std::cout, std::cerr, terminals);
 }

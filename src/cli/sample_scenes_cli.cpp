@@ -26,6 +26,7 @@
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/output/scene_json.hpp"
 #include "placement_samplers/text.hpp"
+#include "cli/progress_line.hpp"
 #include "cli/validate_scenes.hpp"
 #include "sampling/parallel.hpp"
 
@@ -37,6 +38,7 @@ constexpr const char* kUsage =
     "                     [--sampler NAME] [--collision-check radius|fcl|radius_and_fcl]\n"
     "                     [--max-attempts N] [--threads T] [--output FILE.npz]\n"
     "                     [--physics none|check|settle] [--max-scene-seconds S]\n"
+    "                     [--progress | --no-progress]\n"
     "       sample_scenes --config FILE --describe\n"
     "       sample_scenes --config FILE --validate SCENES.jsonl|- [--height-tolerance M]\n"
     "                     [--sampler NAME] [--collision-check MODE]\n"
@@ -52,6 +54,9 @@ constexpr const char* kUsage =
     "check adds stable, moved, turned and fallen; settle also gives the settled poses.\n"
     "--max-scene-seconds fails a scene that takes longer than S seconds to sample and\n"
     "simulate (default: the configuration's max_request_seconds; 0 = no limit).\n"
+    "--progress shows a progress line on stderr (scenes done, scenes/s, failures, ETA);\n"
+    "by default it is shown when stderr is a terminal the scenes do not go to and the run\n"
+    "takes over a second; --no-progress never shows it. stdout and FILE.npz are the same.\n"
     "--validate reads scenes in this tool's JSON lines (- = stdin) and prints one verdict\n"
     "per scene and line: each object inside its sampler's region, at its height (within M,\n"
     "default 0.005 m) and overlapping nothing under the check; exit 0 when all are valid.\n"
@@ -104,7 +109,8 @@ constexpr std::uint64_t kBlockPlacements = 1 << 20;
 /// scenes go there instead. @return what failed
 FailureSummary writeScenes(const SceneGenerator& generator, const PreparedRequest& prepared,
                            std::uint64_t seed, std::uint64_t firstScene, std::uint64_t count,
-                           unsigned threads, std::ostream& out, NpzWriter* npz) {
+                           unsigned threads, std::ostream& out, NpzWriter* npz,
+                           SampleProgress* progress) {
   const unsigned workers =
       threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::string> texts(workers);
@@ -115,7 +121,7 @@ FailureSummary writeScenes(const SceneGenerator& generator, const PreparedReques
   std::vector<SceneResult> results;
   for (std::uint64_t first = 0; first < count; first += block) {
     const std::uint64_t n = std::min(block, count - first);
-    generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads, results);
+    generator.sampleSceneRange(prepared, seed, firstScene + first, n, threads, results, progress);
     for (const SceneResult& scene : results) {
       failures.add(scene);
     }
@@ -155,7 +161,8 @@ FailureSummary writeScenes(const SceneGenerator& generator, const PreparedReques
 
 }  // namespace
 
-int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+                    Terminals terminals) {
   std::string configPath;
   std::string sampler;
   std::string mode;
@@ -171,6 +178,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
   std::string validatePath;
   double heightTolerance = ValidationOptions().heightTolerance;
   std::optional<double> maxSceneSeconds;
+  std::optional<bool> progress;  // --progress, --no-progress
   // Flags that only change how scenes are sampled: --validate reads its poses instead.
   std::vector<std::string> samplingFlags;
   try {
@@ -182,6 +190,13 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       }
       if (flag == "--describe") {
         describe = true;
+        continue;
+      }
+      if (flag == "--progress" || flag == "--no-progress") {
+        if (progress && *progress != (flag == "--progress")) {
+          throw UsageError("--progress and --no-progress: choose one");
+        }
+        progress = flag == "--progress";
         continue;
       }
       if (i + 1 >= args.size()) {
@@ -346,8 +361,17 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
           });
       npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed, npzOptions);
     }
-    const FailureSummary failures =
-        writeScenes(generator, prepared, seed, firstScene, scenes, threads, out, npz.get());
+    // The line goes to a terminal the scenes do not go to (--output, or stdout redirected).
+    SampleProgress counts;
+    std::optional<ProgressLine> line;
+    if (progress.value_or(terminals.err && (npz || !terminals.out))) {
+      line.emplace(err, counts, scenes, terminals.err, progress.value_or(false));
+    }
+    const FailureSummary failures = writeScenes(generator, prepared, seed, firstScene, scenes,
+                                                threads, out, npz.get(), line ? &counts : nullptr);
+    if (line) {
+      line->finish();
+    }
     if (failures.failed() != 0) {
       err << "sample_scenes: " << failures.message(scenes) << "\n";
       return 1;

@@ -1,5 +1,7 @@
 #include "placement_samplers/ros/param_reader.hpp"
 
+#include <cstdint>
+
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
 
@@ -53,7 +55,7 @@ ConfigNode toConfigNode(XmlRpc::XmlRpcValue& value, const std::string& path) {
   return root;
 }
 
-ConfigNode readParameters(const ros::NodeHandle& nodeHandle) {
+XmlRpc::XmlRpcValue readParameterTree(const ros::NodeHandle& nodeHandle) {
   const std::string ns = nodeHandle.getNamespace();
   XmlRpc::XmlRpcValue value;
   if (!nodeHandle.getParam(ns, value) || value.getType() != XmlRpc::XmlRpcValue::TypeStruct ||
@@ -63,7 +65,25 @@ ConfigNode readParameters(const ros::NodeHandle& nodeHandle) {
                       "`rosparam load config/default.yaml " +
                       ns + "` or launch/placement_server.launch");
   }
-  return toConfigNode(value, ns);
+  return value;
+}
+
+ConfigNode readParameters(const ros::NodeHandle& nodeHandle) {
+  XmlRpc::XmlRpcValue value = readParameterTree(nodeHandle);
+  return toConfigNode(value, nodeHandle.getNamespace());
+}
+
+std::string treeDigest(XmlRpc::XmlRpcValue& tree) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const char c : tree.toXml()) {
+    hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  }
+  static const char* const kHex = "0123456789abcdef";
+  std::string out(16, '0');
+  for (int i = 15; i >= 0; --i, hash >>= 4) {
+    out[static_cast<std::size_t>(i)] = kHex[hash & 15u];
+  }
+  return out;
 }
 
 }  // namespace ros_interface

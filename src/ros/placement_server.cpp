@@ -13,7 +13,11 @@
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/text.hpp"
 #include "placement_samplers/ros/conversions.hpp"
+#include "placement_samplers/ros/node_diagnostics.hpp"
 #include "placement_samplers/ros/param_reader.hpp"
+#include "placement_samplers/ros/reconfigure.hpp"
+#include "placement_samplers/ros/region_handles.hpp"
+#include "placement_samplers/ros/sample_action.hpp"
 #include "placement_samplers/ros/scene_markers.hpp"
 #include "placement_samplers/ros/validation_service.hpp"
 #include "ros/thread_priority.hpp"
@@ -22,9 +26,10 @@ namespace placement_samplers {
 namespace ros_interface {
 namespace {
 
-/// The configuration in the parameters; urdf_param objects read their URDF from the parameter
-/// server (names resolved as any ROS name: relative to the node's namespace, ~ = private).
-std::shared_ptr<const SceneGenerator> loadGenerator(const ros::NodeHandle& privateHandle) {
+/// The configuration of a parameter tree; urdf_param objects read their URDF from the
+/// parameter server (names resolved as any ROS name: relative to the node's namespace, ~ =
+/// private).
+std::shared_ptr<const SceneGenerator> buildGenerator(const ConfigNode& tree) {
   BuildOptions options;
   // urdf_param and mjcf_param: names resolved as any ROS name.
   const auto textParam = [](const char* what) {
@@ -43,8 +48,7 @@ std::shared_ptr<const SceneGenerator> loadGenerator(const ros::NodeHandle& priva
   };
   options.urdfParam = textParam("URDF");
   options.mjcfParam = textParam("MJCF");
-  return std::make_shared<const SceneGenerator>(
-      buildSceneConfig(readParameters(privateHandle), options));
+  return std::make_shared<const SceneGenerator>(buildSceneConfig(tree, options));
 }
 
 std::string joined(const std::vector<std::string>& parts) {
@@ -70,6 +74,15 @@ PlacementServer::PlacementServer(const ros::NodeHandle& privateHandle)
 }
 
 PlacementServer::~PlacementServer() {
+  // The light thread runs the components' callbacks: it stops first, then the components (the
+  // action cancels its goals and waits for them).
+  if (lightSpinner_) {
+    lightSpinner_->stop();
+  }
+  action_.reset();
+  handles_.reset();
+  reconfigure_.reset();
+  diagnostics_.reset();
   {
     std::lock_guard<std::mutex> lock(pendingMutex_);
     stopping_ = true;
@@ -80,13 +93,11 @@ PlacementServer::~PlacementServer() {
       t->join();
     }
   }
-  if (lightSpinner_) {
-    lightSpinner_->stop();
-  }
 }
 
 void PlacementServer::start(const ros::WallDuration& masterPeriod) {
-  auto generator = loadGenerator(privateHandle_);
+  XmlRpc::XmlRpcValue tree = readParameterTree(privateHandle_);
+  auto generator = buildGenerator(toConfigNode(tree, privateHandle_.getNamespace()));
   const SceneConfig& config = generator->config();
   seedStream_.seed(config.seed != 0 ? config.seed : randomSeed());
   threads_ = config.threads;
@@ -103,10 +114,14 @@ void PlacementServer::start(const ros::WallDuration& masterPeriod) {
     ROS_WARN_STREAM(ros::this_node::getName() << ": " << warning);
   }
   advertise();
+  publisher_ = std::thread(&PlacementServer::publishLoop, this);
+  diagnostics_ = std::make_unique<NodeDiagnostics>(threads_);
+  diagnostics_->served(treeDigest(tree), false);
+  watcher_ = std::thread(&PlacementServer::watchLoop, this, masterPeriod);
+  startLive(generator);
+  // Last: the light thread runs the callbacks of every component started above.
   lightSpinner_ = std::make_unique<ros::AsyncSpinner>(1, &lightQueue_);
   lightSpinner_->start();
-  publisher_ = std::thread(&PlacementServer::publishLoop, this);
-  watcher_ = std::thread(&PlacementServer::watchLoop, this, masterPeriod);
   ROS_INFO_STREAM(ros::this_node::getName()
                   << ": " << countText(config.objects.size(), "object") << ", "
                   << countText(config.fixtures.size(), "fixture") << "; serving "
@@ -131,7 +146,17 @@ std::uint64_t PlacementServer::nextSeed() {
 
 bool PlacementServer::sample(SamplePlacements::Request& request,
                              SamplePlacements::Response& response) {
+  CallOptions options;
+  answer(request, response, options);
+  return true;
+}
+
+void PlacementServer::answer(const SamplePlacements::Request& request,
+                             SamplePlacements::Response& response, CallOptions& options) {
   lowerThreadPriority();
+  const auto started = std::chrono::steady_clock::now();
+  CallRecord record;
+  diagnostics_->callStarted();
   // Every error becomes an answer: roscpp would turn an exception into a bare failure.
   try {
     const std::shared_ptr<const SceneGenerator> generator = this->generator();
@@ -139,9 +164,16 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     response.frame_id = config.frameId;
     const std::uint32_t count = std::max<std::uint32_t>(request.num_scenes, 1);
     SampleRequest sampleRequest = toSampleRequest(request);
-    sampleRequest.maxSeconds = config.maxRequestSeconds;
+    // A goal's client sees its progress and can cancel it: only a scene is bounded.
+    (options.goal ? sampleRequest.maxSceneSeconds : sampleRequest.maxSeconds) =
+        config.maxRequestSeconds;
     PreparedRequest prepared = generator->prepare(sampleRequest);
-    generator->checkRequestSize(prepared, count);  // refused before any scene is sampled
+    try {
+      generator->checkRequestSize(prepared, count);  // refused before any scene is sampled
+    } catch (const RequestError&) {
+      record.refusedForSize = true;
+      throw;
+    }
     const std::uint64_t placements = count * generator->placementsPerScene(prepared);
     const std::uint64_t seed = request.seed != 0 ? request.seed : nextSeed();
     response.seed = seed;
@@ -150,20 +182,31 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     const bool simulated = prepared.physics.mode != PhysicsMode::None;
     const unsigned threads = count >= 256 || (simulated && count >= 8) ? 0 : 1;
     std::vector<SceneResult> scenes;
-    const bool gaveUp = generator->sampleSceneRangeOrGiveUp(
-        prepared, seed, request.first_scene, count, threads, kGiveUpProbeScenes, scenes);
+    const bool gaveUp =
+        generator->sampleSceneRangeOrGiveUp(prepared, seed, request.first_scene, count, threads,
+                                            kGiveUpProbeScenes, scenes, options.progress);
     if (placements >= kTrimAfterPlacements) {
       scheduleTrim(placements);
     }
+    // Cancelled: the scenes before the first one not sampled, so that a call from
+    // first_scene + their number continues exactly (other threads' later scenes go).
+    const auto cut = std::find_if(scenes.begin(), scenes.end(), wasCancelled);
+    options.cancelled = cut != scenes.end();
+    scenes.erase(cut, scenes.end());
 
     FailureSummary failures;
     response.scenes.reserve(scenes.size());
     for (const SceneResult& scene : scenes) {
       response.scenes.push_back(toSceneMsg(scene));
       failures.add(scene);
+      record.sceneFailed.push_back(!scene.success);
     }
-    response.success = failures.failed() == 0;
-    if (gaveUp) {
+    response.success = failures.failed() == 0 && !options.cancelled;
+    if (options.cancelled) {
+      response.message = "cancelled after " + std::to_string(scenes.size()) + " of " +
+                         countText(count, "scene") +
+                         (failures.failed() != 0 ? "; " + failures.message(scenes.size()) : "");
+    } else if (gaveUp) {
       response.message = "gave up: the first " + std::to_string(scenes.size()) + " of " +
                          std::to_string(count) + " scenes all failed, the rest were not sampled; " +
                          failures.message(scenes.size());
@@ -172,34 +215,46 @@ bool PlacementServer::sample(SamplePlacements::Request& request,
     } else {
       response.message = joined(prepared.notes);
       if (!request.dry_run) {
-        if (beforeShowHook_) {
-          beforeShowHook_();
-        }
-        bool current = false;
-        {
-          // Under pendingMutex_: a reload swaps the generator before it clears what is pending,
-          // so a scene of the old configuration is either cleared or never queued.
-          std::lock_guard<std::mutex> lock(pendingMutex_);
-          current = this->generator() == generator;
-          if (current) {
-            pending_ = ShownScene{generator, std::move(prepared), std::move(scenes.front()), seed,
-                                  request.sampler};
-          }
-        }
-        if (current) {
-          pendingReady_.notify_all();
-        } else {
-          response.message = joined(
-              {response.message, "not shown: the configuration was reloaded during the call"});
-        }
+        show(generator, std::move(prepared), std::move(scenes.front()), seed, request.sampler,
+             response);
       }
     }
   } catch (const std::exception& e) {
     response.success = false;
     response.message = e.what();
     response.scenes.clear();
+    record.error = e.what();
   }
-  return true;
+  if (!response.success && record.error.empty() && !options.cancelled) {
+    record.error = response.message;
+  }
+  record.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  diagnostics_->callFinished(record);
+}
+
+void PlacementServer::show(const std::shared_ptr<const SceneGenerator>& generator,
+                           PreparedRequest prepared, SceneResult scene, std::uint64_t seed,
+                           const std::string& sampler, SamplePlacements::Response& response) {
+  if (beforeShowHook_) {
+    beforeShowHook_();
+  }
+  bool current = false;
+  {
+    // Under pendingMutex_: a reload swaps the generator before it clears what is pending, so
+    // a scene of the old configuration is either cleared or never queued.
+    std::lock_guard<std::mutex> lock(pendingMutex_);
+    current = this->generator() == generator;
+    if (current) {
+      pending_ = ShownScene{generator, std::move(prepared), std::move(scene), seed, sampler};
+    }
+  }
+  if (current) {
+    pendingReady_.notify_all();
+  } else {
+    response.message =
+        joined({response.message, "not shown: the configuration was reloaded during the call"});
+  }
 }
 
 void PlacementServer::scheduleTrim(std::uint64_t placements) {
@@ -222,42 +277,69 @@ bool PlacementServer::validate(ValidatePlacements::Request& request,
 }
 
 bool PlacementServer::reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  std::string message;
   try {
-    auto generator = loadGenerator(privateHandle_);
-    const SceneConfig& config = generator->config();
-    {
-      std::lock_guard<std::mutex> lock(generatorMutex_);
-      generator_ = generator;
-    }
-    {
-      std::lock_guard<std::mutex> lock(publishMutex_);
-      tfStatic_ = config.tfStatic;
-      tfRate_ = config.tfRate;
-    }
-    {
-      // The shown scene belongs to the old configuration: its frames and markers go.
-      std::lock_guard<std::mutex> lock(pendingMutex_);
-      pending_.reset();
-      clearPending_ = true;
-    }
-    pendingReady_.notify_all();
-    response.success = true;
-    response.message = "configuration reloaded: " + countText(config.objects.size(), "object") +
-                       ", " + countText(config.fixtures.size(), "fixture");
-    for (const std::string& warning : config.warnings) {
-      response.message += "; warning: " + warning;
-      ROS_WARN_STREAM(ros::this_node::getName() << ": " << warning);
-    }
-    if (config.threads != threads_) {
-      response.message += "; threads " + std::to_string(config.threads) +
-                          " takes effect when the node restarts (serving with " +
-                          std::to_string(threads_) + ")";
-    }
-    ROS_INFO_STREAM(ros::this_node::getName() << ": " << response.message);
+    XmlRpc::XmlRpcValue tree = readParameterTree(privateHandle_);
+    response.success = serveTree(tree, true, message);
   } catch (const std::exception& e) {
     response.success = false;
-    response.message = std::string("configuration refused, the previous one stays: ") + e.what();
+    message = e.what();
+    diagnostics_->reloadFailed(message);
+  }
+  if (response.success) {
+    response.message = message;
+    ROS_INFO_STREAM(ros::this_node::getName() << ": " << response.message);
+  } else {
+    response.message = "configuration refused, the previous one stays: " + message;
     ROS_ERROR_STREAM(ros::this_node::getName() << ": " << response.message);
+  }
+  return true;
+}
+
+bool PlacementServer::serveTree(XmlRpc::XmlRpcValue& tree, bool reload, std::string& message) {
+  std::lock_guard<std::recursive_mutex> serving(serveMutex_);
+  std::shared_ptr<const SceneGenerator> generator;
+  try {
+    generator = buildGenerator(toConfigNode(tree, privateHandle_.getNamespace()));
+  } catch (const std::exception& e) {
+    message = e.what();
+    reload ? diagnostics_->reloadFailed(message) : diagnostics_->refused(message);
+    return false;
+  }
+  const SceneConfig& config = generator->config();
+  {
+    std::lock_guard<std::mutex> lock(generatorMutex_);
+    generator_ = generator;
+  }
+  {
+    std::lock_guard<std::mutex> lock(publishMutex_);
+    tfStatic_ = config.tfStatic;
+    tfRate_ = config.tfRate;
+  }
+  {
+    // The shown scene belongs to the old configuration: its frames and markers go.
+    std::lock_guard<std::mutex> lock(pendingMutex_);
+    pending_.reset();
+    clearPending_ = true;
+  }
+  pendingReady_.notify_all();
+  message = "configuration reloaded: " + countText(config.objects.size(), "object") + ", " +
+            countText(config.fixtures.size(), "fixture");
+  for (const std::string& warning : config.warnings) {
+    message += "; warning: " + warning;
+    ROS_WARN_STREAM(ros::this_node::getName() << ": " << warning);
+  }
+  if (config.threads != threads_) {
+    message += "; threads " + std::to_string(config.threads) +
+               " takes effect when the node restarts (serving with " + std::to_string(threads_) +
+               ")";
+  }
+  diagnostics_->served(treeDigest(tree), reload);
+  if (reconfigure_) {
+    reconfigure_->show(config);
+  }
+  if (handles_) {
+    handles_->show(generator);
   }
   return true;
 }

@@ -7,6 +7,7 @@
 
 #include "placement_samplers/process/malloc_tuning.hpp"
 #include "placement_samplers/ros/conversions.hpp"
+#include "placement_samplers/ros/node_diagnostics.hpp"
 #include "placement_samplers/ros/placement_server.hpp"
 #include "placement_samplers/ros/scene_markers.hpp"
 #include "ros/thread_priority.hpp"
@@ -102,15 +103,20 @@ void PlacementServer::watchLoop(ros::WallDuration period) {
                       << ": the master restarted (new run_id); registering services and topics "
                          "again");
       advertise();
+      advertiseLive();
     } else if (now && !up) {
       ROS_WARN_STREAM(ros::this_node::getName()
                       << ": the master is back; registering services and topics again");
       advertise();
+      advertiseLive();
     } else if (!now && up) {
       ROS_WARN_STREAM(ros::this_node::getName()
                       << ": lost the master; waiting for it to come back");
     }
     up = now;
+    if (diagnostics_) {
+      diagnostics_->setMasterUp(up);
+    }
     lock.lock();
   }
 }

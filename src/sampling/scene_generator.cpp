@@ -225,6 +225,10 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   return prepared;
 }
 
+bool wasCancelled(const SceneResult& scene) {
+  return !scene.success && scene.message == kCancelledMessage;
+}
+
 void checkSceneRange(std::uint64_t first, std::uint64_t count) {
   if (count > 0 && count - 1 > std::numeric_limits<std::uint64_t>::max() - first) {
     throw RequestError("first scene " + std::to_string(first) + " + " + countText(count, "scene") +
@@ -287,37 +291,42 @@ std::vector<SceneResult> SceneGenerator::sampleSceneRange(const PreparedRequest&
 
 void SceneGenerator::sampleSceneRange(const PreparedRequest& request, std::uint64_t seed,
                                       std::uint64_t first, std::uint64_t count, unsigned threads,
-                                      std::vector<SceneResult>& results) const {
+                                      std::vector<SceneResult>& results,
+                                      SampleProgress* progress) const {
   checkSceneRange(first, count);
   results.resize(count);
-  sampleInto(request, seed, first, count, threads, results.data());
+  sampleInto(request, seed, first, count, threads, results.data(), progress);
 }
 
 bool SceneGenerator::sampleSceneRangeOrGiveUp(const PreparedRequest& request, std::uint64_t seed,
                                               std::uint64_t first, std::uint64_t count,
                                               unsigned threads, std::uint64_t probe,
-                                              std::vector<SceneResult>& results) const {
+                                              std::vector<SceneResult>& results,
+                                              SampleProgress* progress) const {
   checkSceneRange(first, count);
   results.resize(count);
   if (probe == 0 || probe >= count) {
-    sampleInto(request, seed, first, count, threads, results.data());
+    sampleInto(request, seed, first, count, threads, results.data(), progress);
     return false;
   }
   // The probe scenes are the first ones of the range, so the answer does not depend on timing.
-  sampleInto(request, seed, first, probe, threads, results.data());
-  const bool hopeless = std::none_of(results.begin(), results.begin() + probe,
-                                     [](const SceneResult& r) { return r.success; });
+  sampleInto(request, seed, first, probe, threads, results.data(), progress);
+  // Cancelled probe scenes failed for another reason than the request: not hopeless.
+  const bool hopeless =
+      std::none_of(results.begin(), results.begin() + probe,
+                   [](const SceneResult& r) { return r.success || wasCancelled(r); });
   if (hopeless) {
     results.resize(probe);
     return true;
   }
-  sampleInto(request, seed, first + probe, count - probe, threads, results.data() + probe);
+  sampleInto(request, seed, first + probe, count - probe, threads, results.data() + probe,
+             progress);
   return false;
 }
 
 void SceneGenerator::sampleInto(const PreparedRequest& request, std::uint64_t seed,
                                 std::uint64_t first, std::uint64_t count, unsigned threads,
-                                SceneResult* results) const {
+                                SceneResult* results, SampleProgress* progress) const {
   if (threads == 0) {
     threads = std::max(1u, std::thread::hardware_concurrency());
   }
@@ -332,11 +341,14 @@ void SceneGenerator::sampleInto(const PreparedRequest& request, std::uint64_t se
   auto work = [&] {
     Worker worker(request, config_->collisionMargin, threads);
     worker.setDeadline(deadline);
-    // Small chunks keep the threads balanced when some scenes take many attempts.
-    constexpr std::uint64_t kChunk = Worker::kChunk;
-    for (std::uint64_t begin = next.fetch_add(kChunk); begin < count;
-         begin = next.fetch_add(kChunk)) {
-      const std::uint64_t end = std::min(count, begin + kChunk);
+    worker.setProgress(progress);
+    // Small chunks keep the threads balanced when some scenes take many attempts. A simulated
+    // scene takes milliseconds: one at a time, so that the threads finish the scenes nearly
+    // in order (a cancelled range keeps the scenes before the first one not sampled).
+    const std::uint64_t chunk = request.physicsModel ? 1 : Worker::kChunk;
+    for (std::uint64_t begin = next.fetch_add(chunk); begin < count;
+         begin = next.fetch_add(chunk)) {
+      const std::uint64_t end = std::min(count, begin + chunk);
       worker.runChunk(seed, first + begin, static_cast<std::size_t>(end - begin), results + begin);
     }
   };

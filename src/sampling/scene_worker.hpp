@@ -52,32 +52,65 @@ class SceneGenerator::Worker {
     result.index = index;
   }
 
+  /// Counts finished scenes into @p progress and stops when it is cancelled (nullptr: neither).
+  void setProgress(SampleProgress* progress) { progress_ = progress; }
+
   /// Scenes @p index .. @p index + @p count - 1 (count <= kChunk) into @p results, as run()
-  /// would give them; once the time limit has passed, the rest come back "not sampled".
+  /// would give them; once the time limit has passed, the rest come back "not sampled", and
+  /// once the progress is cancelled, kCancelledMessage.
   void runChunk(std::uint64_t seed, std::uint64_t index, std::size_t count, SceneResult* results) {
     // Seeded together: each seeding is a chain of dependent multiplications that the CPU
     // overlaps with the others' (Pcg64::forScenes).
     Engine::forScenes(seed, index, count, chunkEngines_.data());
+    // Counted per chunk (one atomic add per thread and chunk); per scene when each takes
+    // milliseconds of simulation.
+    std::uint64_t done = 0;
+    std::uint64_t failed = 0;
+    const bool countEach = request_.physicsModel != nullptr;
     for (std::size_t k = 0; k < count; ++k) {
       SceneResult& result = results[k];
       result.seed = seed;
       result.index = index + k;
-      if (expired()) {
-        result.success = false;
-        result.message = "not sampled: the request ran out of time";
-        result.placements.clear();
-        result.physicsMode = request_.physics.mode;
-        result.simulated = result.stable = false;
-        result.physics.clear();
+      const bool cancelled =
+          progress_ != nullptr && progress_->cancel.load(std::memory_order_relaxed);
+      if (cancelled || expired()) {
+        notSampled(result,
+                   cancelled ? kCancelledMessage : "not sampled: the request ran out of time");
+        done += cancelled ? 0 : 1;
+        failed += cancelled ? 0 : 1;
         continue;
       }
       engine_ = chunkEngines_[k];
       context_.setScene(seed, index + k);
       sample(result);
+      ++done;
+      failed += result.success ? 0 : 1;
+      if (countEach) {
+        flush(done, failed);
+      }
     }
+    flush(done, failed);
   }
 
  private:
+  void notSampled(SceneResult& result, const char* message) const {
+    result.success = false;
+    result.message = message;
+    result.placements.clear();
+    result.physicsMode = request_.physics.mode;
+    result.simulated = result.stable = false;
+    result.physics.clear();
+  }
+
+  /// Adds @p done and @p failed to the progress and zeroes them.
+  void flush(std::uint64_t& done, std::uint64_t& failed) {
+    if (progress_ != nullptr && done != 0) {
+      progress_->done.fetch_add(done, std::memory_order_relaxed);
+      progress_->failed.fetch_add(failed, std::memory_order_relaxed);
+    }
+    done = failed = 0;
+  }
+
   /// Samples the scene, then simulates it when the request asks; with physics_retry an
   /// unstable scene is drawn again from where the engine stopped, up to physics_max_draws.
   void sample(SceneResult& result) {
@@ -144,6 +177,7 @@ class SceneGenerator::Worker {
   SampleContext context_;
   std::size_t objects_;                   ///< objects the sampler places
   std::unique_ptr<PhysicsStep> physics_;  ///< none when the request's physics is none
+  SampleProgress* progress_ = nullptr;
 };
 
 }  // namespace placement_samplers

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Master restart: the node notices, registers its services and topics again, re-sends its last
-# scene, and keeps answering, also when the master goes away while every sampling thread is
-# busy. SIGTERM during a batch shuts it down cleanly (exit 0, services unregistered). Runs its
-# own master on a free port; cleans up after itself.
+# Master restart: the node notices, registers its services and topics again (the knobs,
+# /diagnostics and the region handles too), re-sends its last scene, and keeps answering, also
+# when the master goes away while every sampling thread is busy. SIGTERM during a batch shuts it
+# down cleanly (exit 0, services unregistered). Runs its own master on a free port; cleans up
+# after itself.
 set -euo pipefail
 node_bin=$1
 config=$2
@@ -79,6 +80,11 @@ frames=$(timeout 10 rostopic echo -n 1 /tf | grep -c child_frame_id || true)
 call_ok "{seed: 6}" || fail "call after restart"
 timeout 10 rostopic echo -n 1 /placement_server/markers >/dev/null || fail "no markers after restart"
 grep -q "the master is back" "$log/node.log" || fail "the node did not report the restart"
+# The knobs, /diagnostics and the region handles are registered again too (not the action).
+wait_service /placement_server/set_parameters || fail "the knobs not registered again"
+timeout 10 rostopic echo -n 1 /diagnostics >/dev/null || fail "no /diagnostics after restart"
+timeout 10 rostopic echo -n 1 /placement_server/region_handles/update_full >/dev/null ||
+  fail "no region handles after restart"
 
 # Again with both sampling threads (threads: 2) busy and the master down for under a second:
 # the master watch has a thread of its own.

@@ -1,8 +1,11 @@
 #!/usr/bin/python3
 """The rospy side: the example client script and the generated Python messages."""
 import os
+import re
+import signal
 import subprocess
 import sys
+import time
 import unittest
 
 import rospy
@@ -72,6 +75,37 @@ class SampleClientTest(unittest.TestCase):
         self.assertEqual(out.returncode, 2)
         self.assertIn("--seed must be in [0, 18446744073709551615], got -1", out.stderr)
         self.assertNotIn("Traceback", out.stderr)
+
+    def test_action_prints_what_the_service_prints_with_a_progress_bar(self):
+        args = [sys.executable, CLIENT, "--seed", "5", "--scenes", "3", "--dry-run",
+                "--physics", "check"]
+        service = subprocess.run(args, capture_output=True, text=True, timeout=60)
+        action = subprocess.run(args + ["--action"], capture_output=True, text=True, timeout=60)
+        self.assertEqual(action.returncode, 0, action.stderr)
+        self.assertEqual(action.stdout, service.stdout)
+        # tqdm's bar on stderr, its last state: every scene done.
+        self.assertIn("3/3", action.stderr.replace("\r", "\n").strip().splitlines()[-1])
+        self.assertIn("0 failed", action.stderr)
+        self.assertEqual(service.stderr, "")
+
+    def test_action_ctrl_c_cancels_and_prints_the_scenes_done(self):
+        # 500 simulated scenes take seconds: the interrupt comes long before the end.
+        client = subprocess.Popen([sys.executable, CLIENT, "--action", "--seed", "6", "--scenes",
+                                   "500", "--dry-run", "--physics", "check"],
+                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.time() + 60
+        seen = ""
+        while time.time() < deadline and not re.search(r"\b[1-9][0-9]*/500\b", seen):
+            seen += os.read(client.stderr.fileno(), 4096).decode()
+        client.send_signal(signal.SIGINT)
+        out, _ = client.communicate(timeout=60)
+        self.assertEqual(client.returncode, 130)
+        lines = out.splitlines()
+        self.assertEqual(lines[0], "success: False  seed: 6  frame: world")
+        self.assertTrue(lines[1].startswith("message: cancelled after "), lines[1])
+        done = int(lines[1].split()[3])
+        self.assertLess(done, 500)
+        self.assertEqual(len([line for line in lines if line.startswith("scene ")]), done)
 
 
 if __name__ == "__main__":

@@ -19,5 +19,14 @@ ConfigNode toConfigNode(XmlRpc::XmlRpcValue& value, const std::string& path);
 /// @throw ConfigError when the namespace holds no parameters
 ConfigNode readParameters(const ros::NodeHandle& nodeHandle);
 
+/// The private namespace of @p nodeHandle as rosparam holds it, to change before it is built
+/// (toConfigNode() with the namespace as the path).
+/// @throw ConfigError when the namespace holds no parameters
+XmlRpc::XmlRpcValue readParameterTree(const ros::NodeHandle& nodeHandle);
+
+/// A digest of a parameter tree: 16 hex digits of FNV-1a (64 bit) over its XML-RPC text, in
+/// which maps are sorted by key. The same parameters give the same digest.
+std::string treeDigest(XmlRpc::XmlRpcValue& tree);
+
 }  // namespace ros_interface
 }  // namespace placement_samplers

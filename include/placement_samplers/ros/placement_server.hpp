@@ -24,20 +24,35 @@
 #include "placement_samplers/PlacedScene.h"
 #include "placement_samplers/SamplePlacements.h"
 #include "placement_samplers/ValidatePlacements.h"
+#include "placement_samplers/ros/call_options.hpp"
 #include "placement_samplers/ros/logger_services.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
+
+namespace XmlRpc {
+class XmlRpcValue;
+}
 
 namespace placement_samplers {
 namespace ros_interface {
 
+class NodeDiagnostics;
+class Reconfigure;
+class RegionHandles;
+class SampleAction;
+
 /// The placement_server node: reads the configuration from its private namespace, serves
-/// ~sample_placements, ~reload and ~ping, and shows the latest scene as tf frames, ~markers,
-/// the latched ~scene and ~poses. It converts and wires; the sampling is the core library's.
+/// ~sample_placements, the ~sample action, ~reload and ~ping, shows the latest scene as tf
+/// frames, ~markers, the latched ~scene and ~poses, reports its health on /diagnostics, takes
+/// its top-level knobs from dynamic_reconfigure and its regions from handles in rviz. It
+/// converts and wires; the sampling is the core library's.
 ///
 /// Threads: sampling calls run on the global callback queue (the caller spins it with
-/// threads() threads); ~reload and ~ping have a queue and thread of their own, so they answer
-/// while every sampling thread is busy; one more thread sends frames, markers and the scene and
-/// re-sends the frames on /tf at tf_rate; one more watches the master.
+/// threads() threads); goals of ~sample run on threads of their own (sample_action.hpp);
+/// ~reload, ~ping, the action's and dynamic_reconfigure's messages and the diagnostics timer
+/// have a queue and thread of their own, so they answer while every sampling thread is busy,
+/// and every change of configuration runs there, one at a time; one more thread sends frames,
+/// markers and the scene and re-sends the frames on /tf at tf_rate; one more watches the
+/// master; the region handles' server has one of its own.
 /// Niceness added to the threads that sample (and those they start), so that ~ping, ~reload,
 /// the publishing thread and roscpp's network threads get a core at once during a heavy call.
 constexpr int kSamplingNiceness = 10;
@@ -67,7 +82,22 @@ class PlacementServer {
   /// Sampling calls served at once (the configuration's `threads`, read at start-up).
   unsigned threads() const { return threads_; }
 
+  /// ~sample_placements: answer() as a service call.
   bool sample(SamplePlacements::Request& request, SamplePlacements::Response& response);
+  /// The one path that samples a request, for the service, the ~sample action and the region
+  /// handles' "sample now": the same request and seed give the same answer. Never throws:
+  /// every error is in @p response.
+  void answer(const SamplePlacements::Request& request, SamplePlacements::Response& response,
+              CallOptions& options);
+  /// The configuration being served.
+  std::shared_ptr<const SceneGenerator> generator() const;
+  /// Builds a configuration from @p tree (the private namespace's parameters, maybe changed)
+  /// and serves it from the next call on, as ~reload does; what is shown of the old one goes,
+  /// and the knobs and region handles show the new one. Changes of configuration run on the
+  /// light services' thread, one at a time.
+  /// @param reload a ~reload (its failure is the ERROR of /diagnostics until one succeeds)
+  /// @return false with the configuration's error in @p message: the old one keeps serving
+  bool serveTree(XmlRpc::XmlRpcValue& tree, bool reload, std::string& message);
   /// ~validate_placements: the verdict on given poses (validation_service.hpp).
   bool validate(ValidatePlacements::Request& request, ValidatePlacements::Response& response);
   bool reload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
@@ -94,8 +124,18 @@ class PlacementServer {
     geometry_msgs::PoseArray poses;  // ~poses; an empty frame_id before the first scene
   };
 
-  std::shared_ptr<const SceneGenerator> generator() const;
   std::uint64_t nextSeed();
+  /// Queues @p scene of a successful call for the publishing thread, unless the configuration
+  /// changed during the call (then @p response's message says it is not shown).
+  void show(const std::shared_ptr<const SceneGenerator>& generator, PreparedRequest prepared,
+            SceneResult scene, std::uint64_t seed, const std::string& sampler,
+            SamplePlacements::Response& response);
+  /// Starts the diagnostics' timer, the knobs, the region handles and the ~sample action
+  /// (placement_server_live.cpp).
+  void startLive(const std::shared_ptr<const SceneGenerator>& generator);
+  /// Registers /diagnostics, the knobs and the region handles again, from the light thread
+  /// (their callbacks run there). The ~sample action is not: its goals hold its server.
+  void advertiseLive();
   void scheduleTrim(std::uint64_t placements);
   void advertise();
   void publishLoop();
@@ -144,6 +184,14 @@ class PlacementServer {
   std::thread publisher_;
   std::thread watcher_;
   std::function<void()> beforeShowHook_;
+
+  // One change of configuration at a time (recursive: start() holds it while a component may
+  // ask for one).
+  std::recursive_mutex serveMutex_;
+  std::unique_ptr<NodeDiagnostics> diagnostics_;
+  std::unique_ptr<Reconfigure> reconfigure_;
+  std::unique_ptr<RegionHandles> handles_;
+  std::unique_ptr<SampleAction> action_;
 };
 
 }  // namespace ros_interface

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -66,6 +67,24 @@ struct PreparedRequest {
   std::shared_ptr<ScenePhysics> physicsModel;
 };
 
+/// A range being sampled, watched from another thread: how many scenes are finished, and a way
+/// to stop it between scenes. Neither changes any scene's result.
+struct SampleProgress {
+  /// Scenes finished (placed, failed, or failed unsampled after the time limit), counted as
+  /// they finish: after each scene when the request simulates, else every few scenes.
+  std::atomic<std::uint64_t> done{0};
+  std::atomic<std::uint64_t> failed{0};  ///< of them, the failed ones
+  /// Set from any thread: every scene not yet begun comes back failed with kCancelledMessage
+  /// (scenes under way finish first), and counts as neither done nor failed.
+  std::atomic<bool> cancel{false};
+};
+
+/// The message of a scene that was not sampled because its range was cancelled.
+constexpr const char* kCancelledMessage = "not sampled: cancelled";
+
+/// True for a scene that SampleProgress::cancel left unsampled.
+bool wasCancelled(const SceneResult& scene);
+
 /// Scenes @p first .. @p first + @p count - 1 must have indices below 2^64.
 /// @throw RequestError with both numbers otherwise
 void checkSceneRange(std::uint64_t first, std::uint64_t count);
@@ -127,23 +146,28 @@ class SceneGenerator {
   /// caller that takes many blocks into the same vector allocates nothing per scene once the
   /// first block is done (a scene's placements otherwise cost one allocation and one free).
   /// @throw RequestError when @p first + @p count exceeds 2^64 - 1
+  /// @param progress counts the finished scenes and may cancel the rest (none: nullptr)
   void sampleSceneRange(const PreparedRequest& request, std::uint64_t seed, std::uint64_t first,
-                        std::uint64_t count, unsigned threads,
-                        std::vector<SceneResult>& results) const;
+                        std::uint64_t count, unsigned threads, std::vector<SceneResult>& results,
+                        SampleProgress* progress = nullptr) const;
 
   /// As sampleSceneRange(), but when the first @p probe scenes of the range all failed the
   /// rest are not sampled: @p results then holds only those, and the request is hopeless in
   /// all likelihood (the node answers it at once instead of spending its time limit).
+  /// A cancelled range never gives up: its scenes not begun come back cancelled.
   /// @param probe scenes to try first; 0 = never give up
+  /// @param progress as for sampleSceneRange()
   /// @return true when it gave up
   bool sampleSceneRangeOrGiveUp(const PreparedRequest& request, std::uint64_t seed,
                                 std::uint64_t first, std::uint64_t count, unsigned threads,
-                                std::uint64_t probe, std::vector<SceneResult>& results) const;
+                                std::uint64_t probe, std::vector<SceneResult>& results,
+                                SampleProgress* progress = nullptr) const;
 
  private:
   class Worker;
   void sampleInto(const PreparedRequest& request, std::uint64_t seed, std::uint64_t first,
-                  std::uint64_t count, unsigned threads, SceneResult* results) const;
+                  std::uint64_t count, unsigned threads, SceneResult* results,
+                  SampleProgress* progress) const;
   std::shared_ptr<const SceneConfig> config_;
 };
 
