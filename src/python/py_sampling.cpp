@@ -182,8 +182,9 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
     const ObjectReading& o = r.objects[i];
     py::tuple pos = py::make_tuple(p.position.x(), p.position.y(), p.position.z());
     py::tuple value = py::make_tuple(pos, quaternion(r, o, call.angles()[i]), o.object);
-    const int status = PyDict_Check(dict) ? PyDict_SetItem(dict, o.name.ptr(), value.ptr())
-                                          : PyObject_SetItem(dict, o.name.ptr(), value.ptr());
+    // Exactly a dict: an OrderedDict keeps its order only through its own __setitem__.
+    const int status = PyDict_CheckExact(dict) ? PyDict_SetItem(dict, o.name.ptr(), value.ptr())
+                                               : PyObject_SetItem(dict, o.name.ptr(), value.ptr());
     if (status < 0) {
       throw py::error_already_set();
     }
@@ -201,7 +202,7 @@ bool nativeOf(py::handle sampler, PyTypeObject* type) {
 
 /// robosuite's `if arg_name not in s_args: s_args[arg_name] = arg`.
 void fillIn(py::handle args, PyObject* key, py::handle value) {
-  const bool dict = PyDict_Check(args.ptr());
+  const bool dict = PyDict_CheckExact(args.ptr());
   const int present =
       dict ? PyDict_Contains(args.ptr(), key) : PySequence_Contains(args.ptr(), key);
   if (present < 0) {
