@@ -1,5 +1,6 @@
 #include "python/leaf_reading.hpp"
 
+#include <limits>
 #include <string>
 
 #include "python/py_samplers.hpp"
@@ -143,9 +144,8 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
     PyErr_Clear();
     o.radius = 0.0;
   }
-  PyObject* top = PyObject_GetAttr(object.ptr(), names().topOffset);
-  py::object topGuard = py::reinterpret_steal<py::object>(top);
-  if (!itemAsDouble(bottom, -1, o.bottom) || top == nullptr || !itemAsDouble(top, -1, o.top)) {
+  o.top = std::numeric_limits<double>::quiet_NaN();
+  if (!itemAsDouble(bottom, -1, o.bottom)) {
     return out.pending.note(k, Stage::AfterY);
   }
   PyObject* initQuat = nullptr;
@@ -308,6 +308,17 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
   }
   if (out.objects.empty()) {
     out.pending = PendingError();  // robosuite reads nothing without objects
+  }
+  if (p.ensureValidPlacement) {
+    // Each object but the last is tested against by the ones after it: their tops now.
+    for (std::size_t j = 0; j + 1 < out.objects.size(); ++j) {
+      ObjectReading& o = out.objects[j];
+      if (!readTop(o.object.ptr(), o.top)) {
+        out.pending.note(j + 1, Stage::AfterY);
+        break;
+      }
+      o.topKnown = true;
+    }
   }
 }
 

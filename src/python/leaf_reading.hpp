@@ -50,7 +50,10 @@ struct ObjectReading {
   py::object name;  ///< its key in the placements
   double radius = 0.0;
   double bottom = 0.0;  ///< bottom_offset[-1] [m]
-  double top = 0.0;     ///< top_offset[-1] [m]
+  /// top_offset[-1] [m] when topKnown: read only where a test of this call reads it
+  /// (SampleCall), NaN until then.
+  double top = 0.0;
+  bool topKnown = false;
   bool hasInitQuat = false;
   std::array<double, 4> initQuat{};  ///< init_quat as given: (x, y, z, w) in quat_multiply
 };

@@ -66,6 +66,16 @@ class PyCompositeSampler {
   CallSlot slot;
 };
 
+/// The C++ object of a Python sampler of class T (or of a Python subclass of it).
+template <class T>
+T& native(py::handle sampler) {
+  auto* instance = reinterpret_cast<py::detail::instance*>(sampler.ptr());
+  if (instance->simple_layout && instance->simple_value_holder[0] != nullptr) {
+    return *static_cast<T*>(instance->simple_value_holder[0]);
+  }
+  return sampler.cast<T&>();  // raises when it was never initialised
+}
+
 /// Registers both classes, RandomizationError and their methods in @p module.
 void bindSamplers(py::module_& module);
 

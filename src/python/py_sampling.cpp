@@ -135,6 +135,9 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
   if (r.objects.empty()) {
     return;
   }
+  if (r.params.ensureValidPlacement) {
+    call.prepareTests(r);  // before the core sampler: it may add an exception to raise
+  }
   std::shared_ptr<UniformRandomSampler> core;
   if (r.pending.error) {
     core = buildCore(r, r.pending.object + 1);
@@ -151,9 +154,6 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
     core = self.core.sampler;
   }
   call.keep(core);
-  if (r.params.ensureValidPlacement) {
-    call.loadEntries();
-  }
   if (!self.rngInfo.is(self.rng)) {
     self.rngInfo = CallerRng(self.rng);
   }
@@ -176,6 +176,7 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
   if (r.pending.error) {
     throw *r.pending.error;  // never reached: the run raises it
   }
+  call.recordPlacements(r, before);
   PyObject* dict = call.placed().ptr();
   for (std::size_t i = 0; i < r.objects.size(); ++i) {
     const ObjectPlacement& p = context.placements()[before + i];
@@ -233,16 +234,6 @@ py::object next(const py::object& iterator) {
     throw py::error_already_set();
   }
   return py::reinterpret_steal<py::object>(item);
-}
-
-/// The C++ object of a Python sampler of ours (nativeOf()).
-template <class T>
-T& native(py::handle sampler) {
-  auto* instance = reinterpret_cast<py::detail::instance*>(sampler.ptr());
-  if (instance->simple_layout && instance->simple_value_holder[0] != nullptr) {
-    return *static_cast<T*>(instance->simple_value_holder[0]);
-  }
-  return sampler.cast<T&>();  // raises when it was never initialised
 }
 
 void runComposite(PyCompositeSampler& self, SampleCall& call, py::handle reference,

@@ -126,6 +126,16 @@ bool plainNumbers(PyObject* value, std::size_t count, double* out) {
   return true;
 }
 
+bool readTop(PyObject* object, double& top) {
+  PyObject* offset = PyObject_GetAttr(object, names().topOffset);
+  if (offset == nullptr) {
+    return false;
+  }
+  const bool ok = itemAsDouble(offset, -1, top);
+  Py_DECREF(offset);
+  return ok;
+}
+
 void readEntry(py::handle value, Eigen::Vector3d& position, double& radius, double& top) {
   py::object parts[3];
   py::object xyz[3];

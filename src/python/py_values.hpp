@@ -41,6 +41,9 @@ bool plainNumber(PyObject* item, double& out);
 /// A list or tuple of exactly @p count floats or ints, read without numpy, as numpy would.
 bool plainNumbers(PyObject* value, std::size_t count, double* out);
 
+/// @p object.top_offset[-1]. @return false with a Python error set
+bool readTop(PyObject* object, double& top);
+
 /// What robosuite's overlap test reads of a placement (pos, quat, obj): pos as (x, y, z),
 /// obj.horizontal_radius and obj.top_offset[-1].
 /// @throw py::error_already_set when they cannot be read
