@@ -36,6 +36,9 @@ PS_PACKAGES=(
   libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev
   # MJCF objects are read and bounded before MuJoCo compiles them (the XML parser MuJoCo uses).
   libtinyxml2-dev
+  # placement_samplers.robosuite, the Python module: pybind11 over the core, with Python's and
+  # numpy's C headers (python3-numpy above).
+  pybind11-dev python3-dev
 )
 
 ps_sudo() {

@@ -12,6 +12,16 @@ namespace {
 /// Sets AssertionError(@p message).
 void setAssertion(const py::str& message) { PyErr_SetObject(PyExc_AssertionError, message.ptr()); }
 
+/// True when the list or tuple @p value holds floats only.
+bool allFloats(PyObject* value) {
+  for (Py_ssize_t i = 0; i < PySequence_Fast_GET_SIZE(value); ++i) {
+    if (!PyFloat_Check(PySequence_Fast_GET_ITEM(value, i))) {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// base_offset[0], [1], [2] of a numpy array or sequence, raised where robosuite reads them.
 void readBase(PyObject* base, LeafReading& out) {
   const Stage stages[3] = {Stage::BeforeY, Stage::AfterY, Stage::AfterY};
@@ -39,7 +49,8 @@ void readReference(py::handle placed, py::handle reference, bool onTop, LeafRead
       throw py::error_already_set();
     }
     double xyz[3];
-    if (plainNumbers(parts[0].ptr(), 3, xyz)) {
+    // Floats only: np.array of integers refuses the float top added in place (numpy says so).
+    if (plainNumbers(parts[0].ptr(), 3, xyz) && (!onTop || allFloats(parts[0].ptr()))) {
       out.base = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
       if (onTop) {
         double top = 0.0;

@@ -258,6 +258,16 @@ def after_draws(seed, draws):
     return rng
 
 
+def casting_error():
+    """The class of numpy's error for a float added in place to an integer array."""
+    try:
+        base = np.array((0, 0, 1))
+        base += np.array((0, 0, 0.5))
+    except TypeError as e:
+        return type(e)
+    return None
+
+
 # What robosuite raises, and how many draws it makes first: (setup, sample() keyword arguments,
 # exception type, message, draws from the caller's Generator before it). A setup is
 # f(api, rng) -> sampler.
@@ -313,6 +323,11 @@ ERRORS = [
      {}, ValueError, "not enough values to unpack (expected 4, got 3)", 3),
     ("hidden objects: robosuite's hide sampler reverses its range", hidden, {}, ValueError,
      "high - low < 0", 3),
+    ("a reference at integer coordinates, on top", uniform(),
+     {"reference": "table", "fixtures": {"table": ((0, 0, 1), None, plain("table"))}},
+     casting_error(),
+     "Cannot cast ufunc 'add' output from dtype('float64') to dtype('int64') with casting rule "
+     "'same_kind'", 0),
 ]
 
 
