@@ -238,6 +238,27 @@ class OtherGenerators(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "expected 'memory' or 'dict', got 'disk'"):
             ours._set_pcg64_state_access("disk")
 
+    def test_a_draw_of_another_thread_is_waited_for(self):
+        import threading
+        rng = np.random.default_rng(8)
+        sampler = SETUPS["lift"](ours, rng)
+        holding, released = threading.Event(), []
+
+        def hold():
+            with rng.bit_generator.lock:  # as numpy holds it while it draws
+                holding.set()
+                threading.Event().wait(0.2)
+                released.append(True)
+
+        other = threading.Thread(target=hold)
+        other.start()
+        holding.wait()
+        placed = sampler.sample()
+        self.assertEqual(released, [True], "sample() ran while the lock was held")
+        other.join()
+        expected = SETUPS["lift"](REFERENCE, np.random.default_rng(8)).sample()
+        self.assertEqual(placed["cube"][0], tuple(float(v) for v in expected["cube"][0]))
+
     def test_numpy_loops(self):
         # Quaternions come from numpy's own float64 cos and sin loops (checked at import).
         self.assertTrue(ours._numpy_loops_in_use())
