@@ -47,6 +47,9 @@ PS_PACKAGES=(
   libinteractive-markers-dev python3-interactive-markers
   # sample_client.py --action draws its progress bar with tqdm.
   python3-tqdm
+  # placement_samplers.robosuite, the Python module: pybind11 over the core, with Python's and
+  # numpy's C headers (python3-numpy above).
+  pybind11-dev python3-dev
 )
 
 ps_sudo() {

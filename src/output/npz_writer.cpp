@@ -8,10 +8,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <limits>
-#include <unordered_map>
 
 #include "output/npz_format.hpp"
+#include "placement_samplers/output/scene_arrays.hpp"
 #include "placement_samplers/text.hpp"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
@@ -63,10 +62,8 @@ struct NpzWriter::Impl {
   bool finished = false;
   bool zip64 = false;
   std::uint64_t numScenes = 0;
-  std::uint64_t rows = 0;  // scenes written so far
-  std::vector<std::string> names;
-  std::unordered_map<std::string, std::size_t> columns;
-  PhysicsMode physics = PhysicsMode::None;
+  std::uint64_t rows = 0;                    // scenes written so far
+  std::unique_ptr<SceneColumns> columns;     // the names' columns and the physics members
   std::vector<npz::ZipMember> members;       // the file's members, in order
   int slot[kMembers] = {};                   // each member's index in members, -1 when left out
   std::uint64_t arrayOffset[kMembers] = {};  // where each member's array starts (after .npy header)
@@ -128,19 +125,6 @@ struct NpzWriter::Impl {
     member.crc =
         static_cast<std::uint32_t>(crc32_z(member.crc, static_cast<const Bytef*>(data), size));
   }
-
-  std::size_t column(const ObjectPlacement& p, std::size_t i) const {
-    // Placements come in sampling order, the order of names: a lookup only if not.
-    if (i < names.size() && names[i] == p.name) {
-      return i;
-    }
-    const auto found = columns.find(std::string(p.name));
-    if (found == columns.end()) {
-      throw std::invalid_argument("NpzWriter: scene places " + quoteText(std::string(p.name)) +
-                                  ", which is not among the names given");
-    }
-    return found->second;
-  }
 };
 
 NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& names,
@@ -150,10 +134,7 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   d.path = path;
   d.shownPath = escapeText(path);
   d.numScenes = numScenes;
-  d.names = names;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    d.columns.emplace(names[i], i);
-  }
+  d.columns = std::make_unique<SceneColumns>(names, options.physics);
   const std::uint64_t n = names.size();
 
   // names: numpy unicode (UTF-32) when every name is UTF-8, else bytes.
@@ -206,7 +187,6 @@ NpzWriter::NpzWriter(const std::string& path, const std::vector<std::string>& na
   headers[kRestPose] = npz::npyHeader("<i2", {numScenes, n});
   payload[kRestPose] = numScenes * n * sizeof(std::int16_t);
 
-  d.physics = options.physics;
   d.restPoses = options.restPoses;
   const int physicsEnd = options.physics == PhysicsMode::None    ? kStable
                          : options.physics == PhysicsMode::Check ? kSampledPosition
@@ -277,59 +257,41 @@ void NpzWriter::write(const std::vector<SceneResult>& scenes) {
     throw OutputError(d.shownPath + ": " + countText(d.rows + k, "scene") +
                       " written into a file laid out for " + std::to_string(d.numScenes));
   }
-  const std::size_t n = d.names.size();
-  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
-  d.position.assign(k * n * 3, kNan);
-  d.orientation.assign(k * n * 4, kNan);
-  d.attempts.assign(k * n, 0);
+  const std::size_t n = d.columns->names().size();
+  const bool physics = d.columns->physics() != PhysicsMode::None;
+  const bool settle = d.columns->physics() == PhysicsMode::Settle;
+  d.position.resize(k * n * 3);
+  d.orientation.resize(k * n * 4);
+  d.attempts.resize(k * n);
   if (d.restPoses) {
-    d.restPose.assign(k * n, ObjectPlacement::kUpright);
+    d.restPose.resize(k * n);
   }
   d.success.resize(k);
   d.scene.resize(k);
-  const bool physics = d.physics != PhysicsMode::None;
-  const bool settle = d.physics == PhysicsMode::Settle;
   if (physics) {
-    d.stable.assign(k, 0);
-    d.moved.assign(k * n, kNan);
-    d.turned.assign(k * n, kNan);
-    d.fallen.assign(k * n, 0);
+    d.stable.resize(k);
+    d.moved.resize(k * n);
+    d.turned.resize(k * n);
+    d.fallen.resize(k * n);
   }
   if (settle) {
-    d.sampledPosition.assign(k * n * 3, kNan);
-    d.sampledOrientation.assign(k * n * 4, kNan);
+    d.sampledPosition.resize(k * n * 3);
+    d.sampledOrientation.resize(k * n * 4);
   }
-  for (std::size_t s = 0; s < k; ++s) {
-    const SceneResult& result = scenes[s];
-    d.success[s] = result.success ? 1 : 0;
-    d.scene[s] = result.index;
-    if (physics) {
-      d.stable[s] = result.stable ? 1 : 0;
-      const std::size_t simulated = result.simulated ? result.physics.size() : 0;
-      for (std::size_t i = 0; i < simulated && i < result.placements.size(); ++i) {
-        const PhysicsOutcome& o = result.physics[i];
-        const std::size_t c = s * n + d.column(result.placements[i], i);
-        d.moved[c] = o.moved;
-        d.turned[c] = o.turned;
-        d.fallen[c] = o.fallen ? 1 : 0;
-        if (settle) {
-          std::memcpy(&d.sampledPosition[c * 3], o.sampledPosition.data(), 3 * sizeof(double));
-          std::memcpy(&d.sampledOrientation[c * 4], o.sampledOrientation.coeffs().data(),
-                      4 * sizeof(double));
-        }
-      }
-    }
-    for (std::size_t i = 0; i < result.placements.size(); ++i) {
-      const ObjectPlacement& p = result.placements[i];
-      const std::size_t c = s * n + d.column(p, i);
-      std::memcpy(&d.position[c * 3], p.position.data(), 3 * sizeof(double));
-      std::memcpy(&d.orientation[c * 4], p.orientation.coeffs().data(), 4 * sizeof(double));
-      d.attempts[c] = p.attempts;
-      if (d.restPoses) {
-        d.restPose[c] = p.restPose;
-      }
-    }
-  }
+  SceneArrayRows rows;
+  rows.position = d.position.data();
+  rows.orientation = d.orientation.data();
+  rows.attempts = d.attempts.data();
+  rows.success = d.success.data();
+  rows.scene = d.scene.data();
+  rows.stable = d.stable.data();
+  rows.moved = d.moved.data();
+  rows.turned = d.turned.data();
+  rows.fallen = d.fallen.data();
+  rows.sampledPosition = d.sampledPosition.data();
+  rows.sampledOrientation = d.sampledOrientation.data();
+  rows.restPose = d.restPoses ? d.restPose.data() : nullptr;
+  d.columns->fill(scenes, rows);
   const std::uint64_t row = d.rows;
   d.append(kPosition, d.position.data(), d.position.size() * sizeof(double),
            row * n * 3 * sizeof(double));

@@ -197,6 +197,15 @@ Pcg64::Pcg64(std::uint64_t seed) : Pcg64(SeedSequence(&seed, 1)) {}
 
 Pcg64::Pcg64(const SeedSequence& sequence) { seedFrom(sequence); }
 
+Pcg64 Pcg64::fromState(std::uint64_t stateHigh, std::uint64_t stateLow, std::uint64_t incHigh,
+                       std::uint64_t incLow) {
+  Pcg64 engine{Unseeded{}};
+  engine.increment_ = (static_cast<Uint128>(incHigh) << 64) | incLow;
+  engine.stateLow_ = stateLow;
+  engine.stateHigh_ = stateHigh;
+  return engine;
+}
+
 Pcg64 Pcg64::forScene(std::uint64_t seed, std::uint64_t index) {
   Pcg64 engine{Unseeded{}};
   engine.seedFrom(SeedSequence::ofPair(seed, index));

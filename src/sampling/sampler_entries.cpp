@@ -39,7 +39,8 @@ UniformRandomSampler::Entry UniformRandomSampler::makeEntry(const ObjectPtr& obj
   entry.object = object;
   entry.x = effectiveRange(*object, 0);
   entry.y = effectiveRange(*object, 1);
-  for (int axis = 0; axis < 2 && !params_.region && !params_.surface; ++axis) {
+  for (int axis = 0; axis < 2 && !params_.region && !params_.surface && params_.checkInputs;
+       ++axis) {
     const Eigen::Vector2d& r = axis == 0 ? entry.x : entry.y;
     if (r[0] > r[1]) {
       const char* key = axis == 0 ? "x_range" : "y_range";

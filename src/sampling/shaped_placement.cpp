@@ -1,5 +1,5 @@
 // The uniform sampler's region shapes and keep-out zones, apart from robosuite's rectangle
-// (uniform_random_sampler.cpp), whose loop stays as it was.
+// (rectangle_placement.cpp), whose loop stays as it was.
 #include <cmath>
 #include <sstream>
 

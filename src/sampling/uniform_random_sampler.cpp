@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_set>
 
 #include "placement_samplers/errors.hpp"
 #include "placement_samplers/limits.hpp"
 #include "sampling/sin_cos.hpp"
 #include "placement_samplers/text.hpp"
-#include "sampling/free_position_check.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -44,7 +44,7 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
   std::ostringstream bound;
   bound << "within [-" << limits::kCoordinate << ", " << limits::kCoordinate << "] m";
   const auto inBounds = [](double v) { return std::abs(v) <= limits::kCoordinate; };
-  for (int axis = 0; axis < 2; ++axis) {
+  for (int axis = 0; axis < 2 && params_.checkInputs; ++axis) {
     const Eigen::Vector2d& r = axis == 0 ? params_.xRange : params_.yRange;
     const std::string key = axis == 0 ? "x_range" : "y_range";
     if (!std::isfinite(r[0]) || !std::isfinite(r[1])) {
@@ -60,6 +60,19 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
   }
   if (params_.rotationAxis < 0 || params_.rotationAxis > 2) {
     throw ConfigError(where + "rotation_axis must be x, y or z");
+  }
+  if (!params_.checkInputs) {
+    // The caller's source checks what it draws; the rest is robosuite's to accept.
+    if (params_.region || params_.surface || !params_.keepOut.empty() ||
+        params_.strategy != UniformSamplerParams::Strategy::Rejection) {
+      throw ConfigError(where + "unchecked inputs are for rectangular rejection sampling only");
+    }
+    if (params_.maxAttempts == 0) {
+      throw ConfigError(where + "max_attempts must be at least 1");
+    }
+    axis_ = Eigen::Vector3d::Unit(params_.rotationAxis);
+    addObjects(objects);
+    return;
   }
   if (!std::isfinite(params_.rotation.low) || !std::isfinite(params_.rotation.high)) {
     throw ConfigError(where + "rotation must be finite");
@@ -152,14 +165,8 @@ std::vector<ObjectPtr> UniformRandomSampler::objects() const {
 
 void UniformRandomSampler::reset() { entries_.clear(); }
 
-Eigen::Quaterniond UniformRandomSampler::sampleOrientation(Engine& engine,
-                                                           const ObjectModel& object) const {
-  double angle = params_.rotation.low;
-  if (params_.rotation.kind == RotationSpec::Kind::Full) {
-    angle = uniform(engine, 0.0, 2.0 * M_PI);
-  } else if (params_.rotation.kind == RotationSpec::Kind::Range) {
-    angle = uniform(engine, params_.rotation.low, params_.rotation.high);  // draws when low == high
-  }
+Eigen::Quaterniond UniformRandomSampler::orientationOf(double angle,
+                                                       const ObjectModel& object) const {
   // A world-axis rotation applied after the initial orientation; Eigen's AngleAxis conversion,
   // with our sinCos.
   double s = 0.0;
@@ -207,6 +214,13 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
                     " is neither a fixture nor an object placed before this sampler");
   }
   const Eigen::Vector3d& base = *resolved;
+  if (context.uniformSource() != nullptr &&
+      (params_.region || params_.surface || !params_.keepOut.empty() ||
+       params_.resting != UniformSamplerParams::Resting::Upright ||
+       params_.strategy != UniformSamplerParams::Strategy::Rejection)) {
+    throw std::logic_error("sampler " + quoteText(name()) +
+                           ": a UniformSource serves rectangular rejection sampling only");
+  }
   if (params_.strategy == UniformSamplerParams::Strategy::FreeSpace) {
     return sampleFreeSpace(context, base, onTop);
   }
@@ -219,73 +233,6 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
     }
   }
   return true;
-}
-
-bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
-                                    const Eigen::Vector3d& base, bool onTop) const {
-  if (!entry.poses.empty()) {
-    return placeOneResting(context, entry, base, onTop);
-  }
-  if (params_.surface) {
-    return placeOnSurface(context, entry, base);
-  }
-  if (entry.draw) {
-    return placeOneShaped(context, entry, base, onTop);
-  }
-  const ObjectModel& object = *entry.object;
-  // robosuite's draws: per attempt x then y, one rotation draw after the accepted attempt
-  // (the fcl modes draw it per attempt, before their test, which needs it).
-  Engine& engine = engineOf(context);
-  const std::uint32_t limit = attemptLimit(context);
-  const bool check = params_.ensureValidPlacement;
-  const bool orientFirst = check && context.needsOrientation();
-  // Rejections per entry, for the failure message; zeroed at the first rejection, since most
-  // objects are placed at their first attempt.
-  std::vector<std::uint32_t>* counts = nullptr;
-
-  Candidate candidate;
-  candidate.object = &object;
-  candidate.position.z() = height(object, base, onTop);
-  for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
-    if ((attempt & 1023u) == 0 && context.expired()) {
-      return failOutOfTime(context, object, attempt - 1);
-    }
-    if (attempt == detail::kNoRoomProbeAttempts && check && context.includesRadiusTest() &&
-        detail::noFreePosition(context.entries(), object, candidate.position.z(),
-                               base.head<2>() + Eigen::Vector2d(entry.x[0], entry.y[0]),
-                               base.head<2>() + Eigen::Vector2d(entry.x[1], entry.y[1]))) {
-      return fail(context, &object, attempt - 1,
-                  "could not place object " + quoteText(object.name) + " with sampler " +
-                      quoteText(name()) + ": after " + std::to_string(attempt - 1) +
-                      " attempts, no position is left (every position of its range overlaps a "
-                      "fixture or an object placed before it)");
-    }
-    // x before y, as robosuite draws them; stored as one pair, since the checker loads the
-    // pair at once and a load that spans two separate stores waits for both to retire.
-    const double x = uniform(engine, entry.x[0], entry.x[1]) + base.x();
-    const double y = uniform(engine, entry.y[0], entry.y[1]) + base.y();
-    candidate.position.head<2>() = Eigen::Vector2d(x, y);
-    if (orientFirst) {
-      candidate.orientation = sampleOrientation(engine, object);
-    }
-    if (check) {
-      const std::ptrdiff_t blocker = context.firstCollision(candidate);
-      if (blocker != CollisionChecker::kNone) {
-        if (counts == nullptr) {
-          counts = &context.blockerCounts();
-        }
-        ++(*counts)[static_cast<std::size_t>(blocker)];
-        continue;
-      }
-    }
-    if (!orientFirst) {
-      candidate.orientation = sampleOrientation(engine, object);
-    }
-    context.addPlacement(name(), candidate, attempt, params_.hides);
-    return true;
-  }
-
-  return failPlacement(context, object, limit, counts, 0);
 }
 
 bool UniformRandomSampler::fail(SampleContext& context, const ObjectModel* object,

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "placement_samplers/output/npz_writer.hpp"
+#include "placement_samplers/output/scene_arrays.hpp"
 
 namespace placement_samplers {
 namespace {
@@ -265,6 +266,50 @@ TEST(NpzWriter, Errors) {
         << "m\xc3\xbcsli is not among the names";
   }
   EXPECT_NE(::access(path.c_str(), F_OK), 0) << "an unfinished file is removed";
+}
+
+// The rows NpzWriter writes, in the caller's buffers (the Python module's numpy arrays): a
+// scene's placements by name (in any order), NaN and 0 where a failed scene placed nothing,
+// the physics members only where asked for.
+TEST(SceneColumns, FillsTheRowsOfANpzFile) {
+  SceneResult swapped = scene(4, true, 2);
+  std::swap(swapped.placements[0], swapped.placements[1]);
+  swapped.simulated = true;
+  swapped.stable = true;
+  swapped.physics.resize(2);
+  swapped.physics[0].moved = 0.25;  // of the second name
+  swapped.physics[1].fallen = true;
+  const std::vector<SceneResult> scenes = {scene(3, false, 1), swapped};
+  const SceneColumns columns({"cube", "m\xc3\xbcsli"}, PhysicsMode::Check);
+  std::vector<double> position(12, -1.0), orientation(16, -1.0), moved(4, -1.0), turned(4, -1.0);
+  std::vector<std::uint32_t> attempts(4, 99);
+  std::vector<std::uint8_t> success(2, 9), stable(2, 9), fallen(4, 9);
+  std::vector<std::uint64_t> index(2, 0);
+  SceneArrayRows rows;
+  rows.position = position.data();
+  rows.orientation = orientation.data();
+  rows.attempts = attempts.data();
+  rows.success = success.data();
+  rows.scene = index.data();
+  rows.stable = stable.data();
+  rows.moved = moved.data();
+  rows.turned = turned.data();
+  rows.fallen = fallen.data();
+  columns.fill(scenes, rows);
+  EXPECT_EQ(success, (std::vector<std::uint8_t>{0, 1}));
+  EXPECT_EQ(index, (std::vector<std::uint64_t>{3, 4}));
+  EXPECT_EQ(stable, (std::vector<std::uint8_t>{0, 1}));
+  EXPECT_EQ(attempts, (std::vector<std::uint32_t>{6, 0, 7, 8}));
+  EXPECT_EQ(position[0], 0.1 * 3);
+  EXPECT_TRUE(std::isnan(position[3]) && std::isnan(orientation[4]));  // not placed
+  EXPECT_EQ(position[6], 0.1 * 4);  // cube, second in the scene, first column
+  EXPECT_EQ(position[9], 0.1 * 4 + 1);
+  EXPECT_TRUE(std::isnan(moved[0]) && std::isnan(moved[1]));  // scene 3 was not simulated
+  EXPECT_EQ(moved[3], 0.25);
+  EXPECT_EQ(fallen, (std::vector<std::uint8_t>{0, 0, 1, 0}));
+  SceneResult stranger = scene(5, true, 1);
+  stranger.placements[0].name = "stranger";
+  EXPECT_THROW(columns.fill({stranger}, rows), std::invalid_argument);
 }
 
 }  // namespace

@@ -61,6 +61,12 @@ class Pcg64 {
   /// numpy's PCG64(@p sequence).
   explicit Pcg64(const SeedSequence& sequence);
 
+  /// numpy's PCG64 whose `bit_generator.state` is {'state': {'state': S, 'inc': I}}, S and I
+  /// given as 64-bit halves: the stream continues where numpy's would. @p inc is taken as it
+  /// is (numpy keeps an even one too). The inverse of stateWords().
+  static Pcg64 fromState(std::uint64_t stateHigh, std::uint64_t stateLow, std::uint64_t incHigh,
+                         std::uint64_t incLow);
+
   /// numpy's default_rng([seed, index]): the stream of scene @p index of request seed @p seed.
   static Pcg64 forScene(std::uint64_t seed, std::uint64_t index);
   /// forScene(seed, firstIndex + k) into out[k] for k < @p count: the engines of consecutive

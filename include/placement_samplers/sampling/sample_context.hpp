@@ -12,6 +12,7 @@
 #include "placement_samplers/sampling/placement.hpp"
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/sampling/surface_region.hpp"
+#include "placement_samplers/sampling/uniform_source.hpp"
 
 namespace placement_samplers {
 
@@ -94,6 +95,10 @@ class SampleContext {
     return hiddenEngine_;
   }
   std::uint32_t maxAttempts() const { return maxAttempts_; }
+  /// Uniform samplers draw from @p source (owned by the caller) instead of engine() and
+  /// hiddenEngine(); nullptr = from the engines again.
+  void setUniformSource(UniformSource* source) { uniformSource_ = source; }
+  UniformSource* uniformSource() const { return uniformSource_; }
   /// The surfaces of the request's fixtures that surface regions stand on (or nullptr).
   void setRequestSurfaces(const RequestSurfaces* surfaces) { requestSurfaces_ = surfaces; }
   const RequestSurfaces* requestSurfaces() const { return requestSurfaces_; }
@@ -118,6 +123,7 @@ class SampleContext {
   CollisionChecker& checker_;
   std::uint32_t maxAttempts_;
   const RequestSurfaces* requestSurfaces_ = nullptr;
+  UniformSource* uniformSource_ = nullptr;
   std::unique_ptr<SurfaceDrawCache> surfaceCache_;
   std::vector<PlacedEntry> entries_;
   std::vector<ObjectPlacement> placements_;

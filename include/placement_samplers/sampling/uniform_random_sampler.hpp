@@ -57,6 +57,11 @@ struct UniformSamplerParams {
   Resting resting = Resting::Upright;
   double minProbability = 0.02;  ///< Stable: rarer resting poses are dropped
   bool allowRolling = false;     ///< Stable: also the poses that roll (a cylinder on its side)
+  /// false: x_range, y_range, rotation, reference_pos and z_offset are taken as robosuite's
+  /// code takes them from a Python caller, unchecked (reversed, emptied by the boundary
+  /// shrink, not finite, beyond limits::kCoordinate); the caller's UniformSource checks each
+  /// draw as numpy's Generator.uniform does (the Python module). Rectangular rejection only.
+  bool checkInputs = true;
 };
 
 /// robosuite's UniformRandomSampler: rejection sampling of x and y in ranges around a
@@ -151,6 +156,11 @@ class UniformRandomSampler : public PlacementSampler {
   };
 
   Eigen::Quaterniond sampleOrientation(Engine& engine, const ObjectModel& object) const;
+  /// The rotation angle of one placement [rad], from @p draws (the engine or a UniformSource).
+  template <class Draws>
+  double drawAngle(Draws& draws) const;
+  /// The orientation of @p object turned by @p angle about the sampler's axis.
+  Eigen::Quaterniond orientationOf(double angle, const ObjectModel& object) const;
   /// The stream this sampler draws from: the scene's, or the hidden objects' own (hide()).
   Engine& engineOf(SampleContext& context) const {
     return params_.hides ? context.hiddenEngine() : context.engine();
@@ -161,6 +171,10 @@ class UniformRandomSampler : public PlacementSampler {
   }
   bool placeOne(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                 bool onTop) const;
+  /// placeOne() in a rectangle, drawing from @p draws.
+  template <class Draws>
+  bool placeInRectangle(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
+                        bool onTop, Draws& draws) const;
   /// placeOne() for a region shape or keep-out zones (shaped_placement.cpp).
   bool placeOneShaped(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                       bool onTop) const;

@@ -1,0 +1,348 @@
+#include "python/leaf_reading.hpp"
+
+#include <limits>
+#include <string>
+
+#include "python/py_samplers.hpp"
+#include "python/py_values.hpp"
+
+namespace placement_samplers::python {
+namespace {
+
+/// Sets AssertionError(@p message).
+void setAssertion(const py::str& message) { PyErr_SetObject(PyExc_AssertionError, message.ptr()); }
+
+/// True when the list or tuple @p value holds floats only.
+bool allFloats(PyObject* value) {
+  for (Py_ssize_t i = 0; i < PySequence_Fast_GET_SIZE(value); ++i) {
+    if (!PyFloat_Check(PySequence_Fast_GET_ITEM(value, i))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// base_offset[0], [1], [2] of a numpy array or sequence, raised where robosuite reads them.
+void readBase(PyObject* base, LeafReading& out) {
+  const Stage stages[3] = {Stage::BeforeY, Stage::AfterY, Stage::AfterY};
+  for (Py_ssize_t i = 0; i < 3; ++i) {
+    if (!itemAsDouble(base, i, out.base[i])) {
+      out.pending.note(0, stages[i]);
+    }
+  }
+}
+
+/// robosuite's base_offset for a reference that is not None: raised at once when wrong.
+void readReference(py::handle placed, py::handle reference, bool onTop, LeafReading& out) {
+  if (Py_IS_TYPE(reference.ptr(), &PyUnicode_Type)) {
+    const int known = PySequence_Contains(placed.ptr(), reference.ptr());
+    if (known < 0) {
+      throw py::error_already_set();
+    }
+    if (known == 0) {
+      setAssertion(py::str("Invalid reference received. Current options are: {}, requested: {}")
+                       .format(placed.attr("keys")(), reference));
+      throw py::error_already_set();
+    }
+    py::object parts[3];
+    if (!unpack(py::object(placed[reference]).ptr(), 3, parts)) {
+      throw py::error_already_set();
+    }
+    double xyz[3];
+    // Floats only: np.array of integers refuses the float top added in place (numpy says so).
+    if (plainNumbers(parts[0].ptr(), 3, xyz) && (!onTop || allFloats(parts[0].ptr()))) {
+      out.base = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+      if (onTop) {
+        double top = 0.0;
+        if (!itemAsDouble(parts[2].attr("top_offset").ptr(), -1, top)) {
+          throw py::error_already_set();
+        }
+        // np.array(ref_pos) + (0, 0, top), component by component.
+        out.base = Eigen::Vector3d(xyz[0] + 0.0, xyz[1] + 0.0, xyz[2] + top);
+      }
+      return;
+    }
+    py::module_ numpy = py::module_::import("numpy");
+    py::object base = numpy.attr("array")(parts[0]);
+    if (onTop) {
+      py::object addend =
+          numpy.attr("array")(py::make_tuple(0, 0, parts[2].attr("top_offset")[py::int_(-1)]));
+      PyObject* sum = PyNumber_InPlaceAdd(base.ptr(), addend.ptr());
+      if (sum == nullptr) {
+        throw py::error_already_set();
+      }
+      base = py::reinterpret_steal<py::object>(sum);
+    }
+    readBase(base.ptr(), out);
+    return;
+  }
+  double xyz[3];
+  if (plainNumbers(reference.ptr(), 3, xyz)) {
+    out.base = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+    return;
+  }
+  py::object base = py::module_::import("numpy").attr("array")(reference);
+  py::tuple shape = base.attr("shape");
+  if (shape.empty()) {
+    PyErr_SetString(PyExc_IndexError, "tuple index out of range");
+    throw py::error_already_set();
+  }
+  if (!py::object(shape[0]).equal(py::int_(3))) {
+    setAssertion(
+        py::str("Invalid reference received. Should be (x,y,z) 3-tuple, but got: {}").format(base));
+    throw py::error_already_set();
+  }
+  readBase(base.ptr(), out);
+}
+
+bool truth(const py::object& value) {
+  const int v = PyObject_IsTrue(value.ptr());
+  if (v < 0) {
+    throw py::error_already_set();
+  }
+  return v == 1;
+}
+
+/// Object @p k as robosuite reads it; its exception kept with where it is raised.
+void readObject(std::size_t k, py::handle object, py::handle placed, py::object& seen,
+                LeafReading& out) {
+  UniformSamplerParams& p = out.params;
+  out.objects.emplace_back();
+  ObjectReading& o = out.objects.back();
+  o.object = py::reinterpret_borrow<py::object>(object);
+  PyObject* name = PyObject_GetAttr(object.ptr(), names().name);
+  if (name == nullptr) {
+    return out.pending.note(k, Stage::BeforeX);
+  }
+  o.name = py::reinterpret_steal<py::object>(name);
+  int known = PyDict_Check(placed.ptr()) ? PyDict_Contains(placed.ptr(), name)
+                                         : PySequence_Contains(placed.ptr(), name);
+  if (known == 0 && k > 0) {
+    // The objects before it in this sampler are placed by now: their names count too.
+    if (!seen) {
+      seen = py::reinterpret_steal<py::object>(PySet_New(nullptr));
+      if (!seen || PySet_Add(seen.ptr(), out.objects.front().name.ptr()) < 0) {
+        throw py::error_already_set();
+      }
+    }
+    known = PySet_Contains(seen.ptr(), name);
+  }
+  if (known != 0) {
+    if (known == 1) {
+      setAssertion(py::str("Object '{}' has already been sampled!").format(o.name));
+    }
+    return out.pending.note(k, Stage::BeforeX);
+  }
+  if (seen && PySet_Add(seen.ptr(), name) < 0) {
+    throw py::error_already_set();
+  }
+  PyObject* radius = PyObject_GetAttr(object.ptr(), names().horizontalRadius);
+  py::object radiusGuard = py::reinterpret_steal<py::object>(radius);
+  PyObject* bottom =
+      radius != nullptr ? PyObject_GetAttr(object.ptr(), names().bottomOffset) : nullptr;
+  py::object bottomGuard = py::reinterpret_steal<py::object>(bottom);
+  if (bottom == nullptr) {
+    return out.pending.note(k, Stage::BeforeX);
+  }
+  if (!toDouble(radius, o.radius)) {
+    // Used by the boundary shrink (before the x draw) and by the overlap test.
+    if (p.ensureObjectBoundaryInRange) {
+      return out.pending.note(k, Stage::BeforeX);
+    }
+    if (p.ensureValidPlacement) {
+      return out.pending.note(k, Stage::AfterY);
+    }
+    PyErr_Clear();
+    o.radius = 0.0;
+  }
+  o.top = std::numeric_limits<double>::quiet_NaN();
+  if (!itemAsDouble(bottom, -1, o.bottom)) {
+    return out.pending.note(k, Stage::AfterY);
+  }
+  PyObject* initQuat = nullptr;
+  const int has = _PyObject_LookupAttr(object.ptr(), names().initQuat, &initQuat);
+  if (has < 0) {
+    return out.pending.note(k, Stage::AfterRotation);
+  }
+  if (has == 1) {
+    py::object guard = py::reinterpret_steal<py::object>(initQuat);
+    py::object parts[4];
+    o.hasInitQuat = true;
+    if (!unpack(initQuat, 4, parts)) {
+      return out.pending.note(k, Stage::AfterRotation);
+    }
+    for (int i = 0; i < 4; ++i) {
+      if (!toDouble(parts[i].ptr(), o.initQuat[i])) {
+        return out.pending.note(k, Stage::AfterRotation);
+      }
+    }
+  }
+}
+
+/// The sampler's own attributes, read with its first object (robosuite reads them there).
+void readParams(PyUniformSampler& s, bool defaultReference, LeafReading& out) {
+  UniformSamplerParams& p = out.params;
+  py::object pair[2];
+  if (!unpack(s.xRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.xRange[0]) ||
+      !toDouble(pair[1].ptr(), p.xRange[1])) {
+    out.pending.note(0, Stage::BeforeX);
+  }
+  if (defaultReference && !itemAsDouble(s.referencePos.ptr(), 0, out.base[0])) {
+    out.pending.note(0, Stage::BeforeY);
+  }
+  if (!unpack(s.yRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.yRange[0]) ||
+      !toDouble(pair[1].ptr(), p.yRange[1])) {
+    out.pending.note(0, Stage::BeforeY);
+  }
+  for (Py_ssize_t i = 1; i < 3 && defaultReference; ++i) {
+    if (!itemAsDouble(s.referencePos.ptr(), i, out.base[i])) {
+      out.pending.note(0, Stage::AfterY);
+    }
+  }
+  if (!toDouble(s.zOffset.ptr(), p.zOffset)) {
+    out.pending.note(0, Stage::AfterY);
+  }
+  static PyObject* iterable =
+      py::object(py::module_::import("collections.abc").attr("Iterable")).release().ptr();
+  PyObject* rotation = s.rotation.ptr();
+  // isinstance(rotation, Iterable), without asking the ABC for the usual types.
+  int isIterable = 0;
+  if (PyTuple_CheckExact(rotation) || PyList_CheckExact(rotation)) {
+    isIterable = 1;
+  } else if (rotation != Py_None && !PyFloat_CheckExact(rotation) && !PyLong_CheckExact(rotation)) {
+    isIterable = PyObject_IsInstance(rotation, iterable);
+  }
+  if (isIterable < 0) {
+    throw py::error_already_set();
+  }
+  if (rotation == Py_None) {
+    p.rotation = RotationSpec::full();
+  } else if (isIterable == 1) {
+    // rng.uniform(high=max(rotation), low=min(rotation)): max first.
+    p.rotation.kind = RotationSpec::Kind::Range;
+    static PyObject* maxFunction =
+        py::object(py::module_::import("builtins").attr("max")).release().ptr();
+    static PyObject* minFunction =
+        py::object(py::module_::import("builtins").attr("min")).release().ptr();
+    PyObject* high = PyObject_CallOneArg(maxFunction, rotation);
+    py::object highGuard = py::reinterpret_steal<py::object>(high);
+    PyObject* low = high != nullptr ? PyObject_CallOneArg(minFunction, rotation) : nullptr;
+    py::object lowGuard = py::reinterpret_steal<py::object>(low);
+    if (low == nullptr || !toDouble(high, p.rotation.high) || !toDouble(low, p.rotation.low)) {
+      out.pending.note(0, Stage::BeforeRotation);
+    }
+  } else {
+    p.rotation.kind = RotationSpec::Kind::Fixed;
+    double angle = 0.0;
+    if (plainNumber(rotation, angle)) {
+      p.rotation.low = p.rotation.high = angle;
+    } else {
+      out.fixedRotationObject = s.rotation;  // numpy computes its quaternion
+    }
+  }
+  out.axis = -1;
+  for (int a = 0; a < 3; ++a) {
+    if (s.rotationAxis.ptr() == names().axes[a]) {  // the interned literals "x", "y", "z"
+      out.axis = a;
+    }
+  }
+  for (int a = 0; a < 3 && out.axis < 0; ++a) {
+    const int same = PyObject_RichCompareBool(s.rotationAxis.ptr(), names().axes[a], Py_EQ);
+    if (same < 0) {
+      out.pending.note(0, Stage::AfterRotation);
+      break;
+    }
+    out.axis = same == 1 ? a : -1;
+  }
+  if (out.axis < 0 && !PyErr_Occurred()) {
+    PyErr_SetObject(PyExc_ValueError,
+                    py::str("Invalid rotation axis specified. Must be 'x', 'y', or 'z'. Got: {}")
+                        .format(s.rotationAxis)
+                        .ptr());
+    out.pending.note(0, Stage::AfterRotation);
+  }
+  p.rotationAxis = out.axis < 0 ? 2 : out.axis;
+}
+
+}  // namespace
+
+void PendingError::note(std::size_t k, Stage s) {
+  py::error_already_set fetched;
+  if (error && (object < k || (object == k && stage <= s))) {
+    return;
+  }
+  object = k;
+  stage = s;
+  error = std::move(fetched);
+}
+
+void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool onTop,
+              LeafReading& out) {
+  out.objects.clear();
+  out.pending = PendingError();
+  out.fixedRotationObject = py::object();
+  out.base = Eigen::Vector3d::Zero();
+  out.axis = 2;
+  UniformSamplerParams& p = out.params;
+  p = UniformSamplerParams();
+  p.checkInputs = false;
+  p.maxAttempts = 5000;  // robosuite's range(5000)
+  const bool defaultReference = reference.is_none();
+  if (!defaultReference) {
+    readReference(placed, reference, onTop, out);
+  }
+  p.ensureObjectBoundaryInRange = truth(s.ensureObjectBoundaryInRange);
+  p.ensureValidPlacement = truth(s.ensureValidPlacement);
+  py::object seen;
+  py::object objects = s.mujocoObjects;  // held: reading may replace the attribute
+  auto read = [&](std::size_t k, PyObject* object) {
+    readObject(k, object, placed, seen, out);
+    if (k == 0) {
+      readParams(s, defaultReference, out);
+    }
+    return !out.pending.error;  // robosuite raises before it reaches the next object
+  };
+  if (PyList_CheckExact(objects.ptr())) {
+    for (Py_ssize_t k = 0; k < PyList_GET_SIZE(objects.ptr()); ++k) {
+      py::object object = py::reinterpret_borrow<py::object>(PyList_GET_ITEM(objects.ptr(), k));
+      if (!read(static_cast<std::size_t>(k), object.ptr())) {
+        break;
+      }
+    }
+  } else {
+    std::size_t k = 0;
+    for (py::handle object : objects) {
+      if (!read(k++, object.ptr())) {
+        break;
+      }
+    }
+  }
+  if (out.objects.empty()) {
+    out.pending = PendingError();  // robosuite reads nothing without objects
+  }
+  if (p.ensureValidPlacement) {
+    // Each object but the last is tested against by the ones after it: their tops now.
+    for (std::size_t j = 0; j + 1 < out.objects.size(); ++j) {
+      ObjectReading& o = out.objects[j];
+      if (!readTop(o.object.ptr(), o.top)) {
+        out.pending.note(j + 1, Stage::AfterY);
+        break;
+      }
+      o.topKnown = true;
+    }
+  }
+}
+
+void cacheKey(const LeafReading& r, std::vector<double>& key) {
+  const UniformSamplerParams& p = r.params;
+  key.assign({p.xRange[0], p.xRange[1], p.yRange[0], p.yRange[1],
+              static_cast<double>(p.rotation.kind), p.rotation.low, p.rotation.high,
+              static_cast<double>(p.rotationAxis), p.ensureObjectBoundaryInRange ? 1.0 : 0.0,
+              p.ensureValidPlacement ? 1.0 : 0.0, p.zOffset,
+              static_cast<double>(r.objects.size())});
+  for (const ObjectReading& o : r.objects) {
+    key.insert(key.end(), {o.radius, o.bottom, o.top});
+  }
+}
+
+}  // namespace placement_samplers::python

@@ -1,0 +1,169 @@
+#include "python/py_values.hpp"
+
+#include "python/numpy_support.hpp"
+
+namespace placement_samplers::python {
+namespace {
+
+PyObject* minusOne() {
+  static PyObject* value = PyLong_FromLong(-1);
+  return value;
+}
+
+}  // namespace
+
+const Names& names() {
+  static const Names names;
+  return names;
+}
+
+bool toDouble(PyObject* value, double& out) {
+  out = PyFloat_AsDouble(value);
+  return !(out == -1.0 && PyErr_Occurred());
+}
+
+/// @p sequence [@p index] as a double (index -1: the last item, as robosuite's `[-1]`).
+bool itemAsDouble(PyObject* sequence, Py_ssize_t index, double& out) {
+  // numpy arrays, tuples and lists of floats as their items read: without a Python call.
+  if (float64ArrayItem(sequence, index, out)) {
+    return true;
+  }
+  if (PyTuple_CheckExact(sequence) || PyList_CheckExact(sequence)) {
+    const Py_ssize_t size = PySequence_Fast_GET_SIZE(sequence);
+    const Py_ssize_t i = index < 0 ? index + size : index;
+    if (i >= 0 && i < size && PyFloat_Check(PySequence_Fast_GET_ITEM(sequence, i))) {
+      out = PyFloat_AS_DOUBLE(PySequence_Fast_GET_ITEM(sequence, i));
+      return true;
+    }
+  }
+  PyObject* key = index == -1 ? minusOne() : PyLong_FromSsize_t(index);
+  if (key == nullptr) {
+    return false;
+  }
+  PyObject* item = PyObject_GetItem(sequence, key);
+  if (index != -1) {
+    Py_DECREF(key);
+  }
+  if (item == nullptr) {
+    return false;
+  }
+  const bool ok = toDouble(item, out);
+  Py_DECREF(item);
+  return ok;
+}
+
+/// Python's `a, b, ... = value` into @p out (new references), with Python's messages.
+bool unpack(PyObject* value, std::size_t count, py::object* out) {
+  if ((PyTuple_CheckExact(value) || PyList_CheckExact(value)) &&
+      static_cast<std::size_t>(PySequence_Fast_GET_SIZE(value)) == count) {
+    for (std::size_t i = 0; i < count; ++i) {
+      out[i] = py::reinterpret_borrow<py::object>(
+          PySequence_Fast_GET_ITEM(value, static_cast<Py_ssize_t>(i)));
+    }
+    return true;
+  }
+  PyObject* iterator = PyObject_GetIter(value);
+  if (iterator == nullptr) {
+    if (PyErr_ExceptionMatches(PyExc_TypeError)) {
+      PyErr_Clear();
+      PyErr_Format(PyExc_TypeError, "cannot unpack non-iterable %.200s object",
+                   Py_TYPE(value)->tp_name);
+    }
+    return false;
+  }
+  py::object guard = py::reinterpret_steal<py::object>(iterator);
+  for (std::size_t i = 0; i < count; ++i) {
+    PyObject* item = PyIter_Next(iterator);
+    if (item == nullptr) {
+      if (!PyErr_Occurred()) {
+        PyErr_Format(PyExc_ValueError, "not enough values to unpack (expected %zu, got %zu)", count,
+                     i);
+      }
+      return false;
+    }
+    out[i] = py::reinterpret_steal<py::object>(item);
+  }
+  PyObject* extra = PyIter_Next(iterator);
+  if (extra != nullptr) {
+    Py_DECREF(extra);
+    PyErr_Format(PyExc_ValueError, "too many values to unpack (expected %zu)", count);
+    return false;
+  }
+  return !PyErr_Occurred();
+}
+
+/// A float, or an int that a double holds exactly: what numpy reads it as.
+bool plainNumber(PyObject* item, double& out) {
+  if (PyFloat_Check(item)) {
+    out = PyFloat_AS_DOUBLE(item);
+    return true;
+  }
+  if (!PyLong_CheckExact(item)) {
+    return false;
+  }
+  const long long v = PyLong_AsLongLong(item);
+  if ((v == -1 && PyErr_Occurred()) || v > (1LL << 53) || v < -(1LL << 53)) {
+    PyErr_Clear();
+    return false;
+  }
+  out = static_cast<double>(v);
+  return true;
+}
+
+/// A list or tuple of exactly @p count floats or ints: read without numpy, as numpy would.
+bool plainNumbers(PyObject* value, std::size_t count, double* out) {
+  if (!PyTuple_CheckExact(value) && !PyList_CheckExact(value)) {
+    return false;
+  }
+  if (static_cast<std::size_t>(PySequence_Fast_GET_SIZE(value)) != count) {
+    return false;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!plainNumber(PySequence_Fast_GET_ITEM(value, static_cast<Py_ssize_t>(i)), out[i])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool readTop(PyObject* object, double& top) {
+  PyObject* offset = PyObject_GetAttr(object, names().topOffset);
+  if (offset == nullptr) {
+    return false;
+  }
+  const bool ok = itemAsDouble(offset, -1, top);
+  Py_DECREF(offset);
+  return ok;
+}
+
+void readEntry(py::handle value, Eigen::Vector3d& position, double& radius, double& top) {
+  py::object parts[3];
+  py::object xyz[3];
+  if (!unpack(value.ptr(), 3, parts)) {
+    throw py::error_already_set();
+  }
+  double plain[3];
+  if (plainNumbers(parts[0].ptr(), 3, plain)) {
+    position = Eigen::Vector3d(plain[0], plain[1], plain[2]);
+  } else {
+    if (!unpack(parts[0].ptr(), 3, xyz)) {
+      throw py::error_already_set();
+    }
+    for (int i = 0; i < 3; ++i) {
+      if (!toDouble(xyz[i].ptr(), position[i])) {
+        throw py::error_already_set();
+      }
+    }
+  }
+  PyObject* radiusObject = PyObject_GetAttr(parts[2].ptr(), names().horizontalRadius);
+  py::object radiusGuard = py::reinterpret_steal<py::object>(radiusObject);
+  PyObject* topObject =
+      radiusObject != nullptr ? PyObject_GetAttr(parts[2].ptr(), names().topOffset) : nullptr;
+  py::object topGuard = py::reinterpret_steal<py::object>(topObject);
+  if (topObject == nullptr || !toDouble(radiusObject, radius) ||
+      !itemAsDouble(topObject, -1, top)) {
+    throw py::error_already_set();
+  }
+}
+
+}  // namespace placement_samplers::python

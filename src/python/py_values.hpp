@@ -1,0 +1,52 @@
+#pragma once
+
+// Reading Python values as robosuite's Python code reads them: numbers (as numpy turns them
+// into float64), items, unpacking with Python's messages, attribute names made once.
+
+#include <pybind11/pybind11.h>
+
+#include <Eigen/Core>
+#include <cstddef>
+
+namespace placement_samplers::python {
+
+namespace py = pybind11;
+
+/// Attribute and string names, interned once.
+struct Names {
+  PyObject* name = PyUnicode_InternFromString("name");
+  PyObject* horizontalRadius = PyUnicode_InternFromString("horizontal_radius");
+  PyObject* bottomOffset = PyUnicode_InternFromString("bottom_offset");
+  PyObject* topOffset = PyUnicode_InternFromString("top_offset");
+  PyObject* initQuat = PyUnicode_InternFromString("init_quat");
+  PyObject* axes[3] = {PyUnicode_InternFromString("x"), PyUnicode_InternFromString("y"),
+                       PyUnicode_InternFromString("z")};
+};
+const Names& names();
+
+/// float(@p value) as numpy reads a scalar (PyFloat_AsDouble). @return false with a Python
+/// error set
+bool toDouble(PyObject* value, double& out);
+
+/// @p sequence [@p index] as a double (index -1: the last item, as robosuite's `[-1]`);
+/// numpy arrays, tuples and lists of floats read without a Python call.
+bool itemAsDouble(PyObject* sequence, Py_ssize_t index, double& out);
+
+/// Python's `a, b, ... = value` into @p out, with Python's messages.
+bool unpack(PyObject* value, std::size_t count, py::object* out);
+
+/// A float, or an int that a double holds exactly: what numpy reads it as.
+bool plainNumber(PyObject* item, double& out);
+
+/// A list or tuple of exactly @p count floats or ints, read without numpy, as numpy would.
+bool plainNumbers(PyObject* value, std::size_t count, double* out);
+
+/// @p object.top_offset[-1]. @return false with a Python error set
+bool readTop(PyObject* object, double& top);
+
+/// What robosuite's overlap test reads of a placement (pos, quat, obj): pos as (x, y, z),
+/// obj.horizontal_radius and obj.top_offset[-1].
+/// @throw py::error_already_set when they cannot be read
+void readEntry(py::handle value, Eigen::Vector3d& position, double& radius, double& top);
+
+}  // namespace placement_samplers::python
