@@ -17,6 +17,12 @@ constexpr double kRelativeTolerance = 1e-6;
 /// The factor between the tolerances of the attempts convexHull() makes.
 constexpr double kRetryFactor = 100.0;
 
+double toleranceOf(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  const double magnitude = lo.cwiseAbs().cwiseMax(hi.cwiseAbs()).sum();
+  return std::max(3.0 * std::numeric_limits<double>::epsilon() * magnitude,
+                  kRelativeTolerance * (hi - lo).norm());
+}
+
 ConvexHull hullWithTolerance(const std::vector<Eigen::Vector3d>& points, double tol,
                              const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                              const int* loIndex, const int* hiIndex) {
@@ -89,9 +95,7 @@ ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points) {
       }
     }
   }
-  const double magnitude = lo.cwiseAbs().cwiseMax(hi.cwiseAbs()).sum();
-  const double tol = std::max(3.0 * std::numeric_limits<double>::epsilon() * magnitude,
-                              kRelativeTolerance * (hi - lo).norm());
+  const double tol = toleranceOf(lo, hi);
   // Nearly coplanar points can defeat the merges' bookkeeping; a coarser tolerance merges them
   // earlier and more boldly. Never seen in tests; a safety net.
   for (int attempt = 0;; ++attempt) {
@@ -105,6 +109,18 @@ ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points) {
       }
     }
   }
+}
+
+double hullTolerance(const std::vector<Eigen::Vector3d>& points) {
+  if (points.empty()) {
+    return 0.0;
+  }
+  Eigen::Vector3d lo = points[0], hi = points[0];
+  for (const Eigen::Vector3d& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return toleranceOf(lo, hi);
 }
 
 void hullVolume(const ConvexHull& hull, const std::vector<Eigen::Vector3d>& points, double& volume,

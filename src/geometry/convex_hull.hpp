@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace placement_samplers::detail {
@@ -36,6 +37,20 @@ constexpr std::size_t kMaxHullPoints = 1000000;
 /// @throw std::invalid_argument when the points span no volume (fewer than four, all on a line or
 ///   a plane), are not finite, or are more than kMaxHullPoints
 ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points);
+
+/// The tolerance convexHull() works with for @p points [m]: 1e-6 of their extent (the diagonal
+/// of their bounding box), and never below what rounding makes of their coordinates.
+double hullTolerance(const std::vector<Eigen::Vector3d>& points);
+
+/// The convex hull of a closed triangle mesh that is convex already, in linear time: its
+/// triangles, neighbours coplanar within hullTolerance() merged into polygons. std::nullopt when
+/// the mesh is not such a surface (convexHull() then takes its points): an edge without exactly
+/// one opposite, a vertex no triangle uses, more than one piece or a hole (V - E + F != 2), or
+/// a vertex whose neighbours do not all lie on or below the planes of its triangles. A closed
+/// surface of the sphere's topology that is convex at every vertex bounds a convex body.
+/// @param triangles indices into @p points, counter-clockwise seen from outside
+std::optional<ConvexHull> convexMeshHull(const std::vector<Eigen::Vector3d>& points,
+                                         const std::vector<Eigen::Vector3i>& triangles);
 
 /// Volume [m^3] and centroid [m] of the solid a hull bounds (@p points as given to convexHull),
 /// and when @p spread is given, its second moment about the centroid, the integral of

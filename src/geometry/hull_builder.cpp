@@ -250,17 +250,22 @@ void HullBuilder::addPoint(int eye, int f) {
       }
     }
   }
+  // The new faces' planes side by side: every orphaned point is tested against each.
+  planes_.clear();
+  for (int g : newFaces_) {
+    if (faces_[g].mark == Mark::Active) {
+      planes_.push_back({faces_[g].normal, faces_[g].offset, g});
+    }
+  }
   for (int q : unclaimed_) {
+    const Eigen::Vector3d& p = p_[q];
     int best = -1;
     double bestDistance = tol_;
-    for (int g : newFaces_) {
-      if (faces_[g].mark != Mark::Active) {
-        continue;
-      }
-      const double d = distance(g, p_[q]);
+    for (const Plane& plane : planes_) {
+      const double d = plane.normal.dot(p) - plane.offset;
       if (d > bestDistance) {
         bestDistance = d;
-        best = g;
+        best = plane.face;
       }
     }
     if (best >= 0) {

@@ -120,7 +120,13 @@ class HullBuilder {
     int remaining;  ///< edges of the face still to look across
   };
   std::vector<Frame> stack_;  ///< computeHorizon's
-  std::vector<int> mark_;     ///< per point: stamp_ when on the face mergeKeepsSimple looks at
+  struct Plane {
+    Eigen::Vector3d normal;
+    double offset;
+    int face;
+  };
+  std::vector<Plane> planes_;  ///< addPoint's: the new faces'
+  std::vector<int> mark_;      ///< per point: stamp_ when on the face mergeKeepsSimple looks at
   int stamp_ = 0;
   std::vector<int> horizon_, visible_, newFaces_, unclaimed_, deadEdges_, deadFaces_;
 };

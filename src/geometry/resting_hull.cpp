@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -276,7 +277,11 @@ HullPoints hullPoints(const std::vector<Shape>& shapes) {
 RestingHull restingHull(const std::vector<Shape>& shapes, const RestingOptions& options) {
   RestingHull r;
   r.input = hullPoints(shapes);
-  r.hull = convexHull(r.input.points);
+  std::optional<ConvexHull> convexMesh;
+  if (shapes.size() == 1 && shapes[0].type == ShapeType::Mesh) {
+    convexMesh = convexMeshHull(r.input.points, shapes[0].mesh->triangles);
+  }
+  r.hull = convexMesh ? std::move(*convexMesh) : convexHull(r.input.points);
   const ConvexHull& hull = r.hull;
   const std::vector<Eigen::Vector3d>& points = r.input.points;
   if (shapes.size() == 1 && shapes[0].type == ShapeType::Mesh) {

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -176,7 +177,9 @@ double meshWeight(const Shape& shape, Eigen::Vector3d& centroid) {
   double volume = 0.0;
   Eigen::Matrix3d spread;
   try {
-    detail::hullVolume(detail::convexHull(points), points, volume, centroid, &spread);
+    std::optional<detail::ConvexHull> hull = detail::convexMeshHull(points, shape.mesh->triangles);
+    detail::hullVolume(hull ? *hull : detail::convexHull(points), points, volume, centroid,
+                       &spread);
   } catch (const std::invalid_argument&) {
     return 0.0;
   }

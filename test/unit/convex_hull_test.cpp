@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -175,6 +176,118 @@ TEST(ConvexHull, LargeEllipsoid) {
   EXPECT_GT(volume, 0.995 * ellipsoid);
   EXPECT_LT(centroid.norm(), 1e-4);
   EXPECT_GT(hull.faceCount(), 30000u);
+}
+
+using Triangles = std::vector<Eigen::Vector3i>;
+
+/// A closed box mesh of 12 triangles, counter-clockwise seen from outside.
+Triangles boxTriangles() {
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  Triangles t;
+  for (const auto& q : quads) {
+    t.emplace_back(q[0], q[1], q[2]);
+    t.emplace_back(q[0], q[2], q[3]);
+  }
+  return t;
+}
+
+/// An ellipsoid: two poles and @p rings rings of @p segments vertices, each ring turned half a
+/// segment from the last.
+void ellipsoidMesh(int rings, int segments, Points& p, Triangles& t) {
+  p.assign(1, Eigen::Vector3d(0, 0, 0.04));
+  for (int j = 1; j <= rings; ++j) {
+    const double polar = M_PI * j / (rings + 1);
+    for (int k = 0; k < segments; ++k) {
+      const double a = 2.0 * M_PI * (k + 0.5 * (j % 2)) / segments;
+      p.emplace_back(0.1 * std::sin(polar) * std::cos(a), 0.06 * std::sin(polar) * std::sin(a),
+                     0.04 * std::cos(polar));
+    }
+  }
+  p.emplace_back(0, 0, -0.04);
+  const int last = static_cast<int>(p.size()) - 1;
+  auto at = [&](int ring, int k) { return 1 + (ring - 1) * segments + k % segments; };
+  t.clear();
+  for (int k = 0; k < segments; ++k) {
+    t.emplace_back(0, at(1, k), at(1, k + 1));
+    t.emplace_back(last, at(rings, k + 1), at(rings, k));
+  }
+  // Each quad between two rings split along the diagonal that keeps the surface convex.
+  for (int j = 1; j < rings; ++j) {
+    for (int k = 0; k < segments; ++k) {
+      const int a = at(j, k), b = at(j + 1, k), c = at(j + 1, k + 1), d = at(j, k + 1);
+      const Eigen::Vector3d n = (p[b] - p[a]).cross(p[d] - p[a]);
+      if (n.dot(p[c] - p[a]) <= 0.0) {
+        t.emplace_back(a, b, d);
+        t.emplace_back(d, b, c);
+      } else {
+        t.emplace_back(a, b, c);
+        t.emplace_back(a, c, d);
+      }
+    }
+  }
+}
+
+double volumeOf(const ConvexHull& hull, const Points& p) {
+  double volume = 0.0;
+  Eigen::Vector3d centroid;
+  hullVolume(hull, p, volume, centroid);
+  return volume;
+}
+
+TEST(ConvexMeshHull, ConvexMeshIsItsOwnHull) {
+  const Points box = boxCorners(Eigen::Vector3d(0.1, 0.05, 0.025));
+  const std::optional<ConvexHull> boxHull = convexMeshHull(box, boxTriangles());
+  ASSERT_TRUE(boxHull);
+  expectValidHull(*boxHull, box, "box mesh");
+  EXPECT_EQ(boxHull->faceCount(), 6u);
+  EXPECT_EQ(boxHull->vertices.size(), 24u);
+  EXPECT_NEAR(volumeOf(*boxHull, box), 0.001, 1e-15);
+
+  Points p;
+  Triangles t;
+  ellipsoidMesh(30, 40, p, t);
+  const std::optional<ConvexHull> mesh = convexMeshHull(p, t);
+  ASSERT_TRUE(mesh);
+  expectValidHull(*mesh, p, "ellipsoid mesh");
+  // The same solid as quickhull makes of its vertices.
+  const ConvexHull quick = convexHull(p);
+  EXPECT_NEAR(volumeOf(*mesh, p), volumeOf(quick, p), 1e-12);
+  EXPECT_EQ(mesh->faceCount(), quick.faceCount());
+}
+
+TEST(ConvexMeshHull, OtherMeshesAreLeftToQuickhull) {
+  const Points box = boxCorners(Eigen::Vector3d(0.1, 0.05, 0.025));
+  Triangles open = boxTriangles();
+  open.pop_back();
+  EXPECT_FALSE(convexMeshHull(box, open));
+  Triangles inverted = boxTriangles();
+  for (Eigen::Vector3i& tri : inverted) {
+    std::swap(tri[1], tri[2]);
+  }
+  EXPECT_FALSE(convexMeshHull(box, inverted));
+  Points extra = box;
+  extra.emplace_back(0.5, 0.0, 0.0);  // used by no triangle: it could be anywhere
+  EXPECT_FALSE(convexMeshHull(extra, boxTriangles()));
+  // A dent: one corner pushed in past its neighbours' planes.
+  Points dented = box;
+  dented[7] = Eigen::Vector3d(0.02, 0.01, 0.005);
+  EXPECT_FALSE(convexMeshHull(dented, boxTriangles()));
+  // Triangles that do not share their vertices (as an STL file stores them).
+  Points soup;
+  Triangles separate;
+  for (const Eigen::Vector3i& tri : boxTriangles()) {
+    const int base = static_cast<int>(soup.size());
+    for (int k = 0; k < 3; ++k) {
+      soup.push_back(box[static_cast<std::size_t>(tri[k])]);
+    }
+    separate.emplace_back(base, base + 1, base + 2);
+  }
+  EXPECT_FALSE(convexMeshHull(soup, separate));
+  EXPECT_FALSE(convexMeshHull(box, {}));
+  Triangles bad = boxTriangles();
+  bad[0][1] = 8;
+  EXPECT_FALSE(convexMeshHull(box, bad));
 }
 
 std::string hullError(const Points& p) {

@@ -246,16 +246,24 @@ TEST(RestingPoses, OrientationPutsTheFaceDownAndBoundsFollow) {
 }
 
 TEST(RestingPoses, BoxMeshThroughTheHullMatchesTheClosedForm) {
+  // With its 12 triangles (a closed convex mesh is its own hull) and as vertices alone
+  // (quickhull).
   const Vec size(0.2, 0.1, 0.05);
   const std::vector<RestingPose> exact = restingPoses({Shape::box(size)});
-  const std::vector<RestingPose> hull = restingPoses({boxMesh(size)});
-  ASSERT_EQ(hull.size(), exact.size());
-  for (std::size_t i = 0; i < exact.size(); ++i) {
-    EXPECT_NEAR(hull[i].probability, exact[i].probability, 1e-9);
-    EXPECT_LT((hull[i].normal - exact[i].normal).norm(), 1e-12);
-    EXPECT_LT(hull[i].orientation.angularDistance(exact[i].orientation), 1e-9);
-    EXPECT_NEAR(hull[i].bounds.bottomZ, exact[i].bounds.bottomZ, 1e-12);
-    EXPECT_FALSE(hull[i].rolling);
+  Shape vertices = boxMesh(size);
+  auto bare = std::make_shared<Mesh>(*vertices.mesh);
+  bare->triangles.clear();
+  vertices.mesh = bare;
+  for (const Shape& mesh : {boxMesh(size), vertices}) {
+    const std::vector<RestingPose> hull = restingPoses({mesh});
+    ASSERT_EQ(hull.size(), exact.size());
+    for (std::size_t i = 0; i < exact.size(); ++i) {
+      EXPECT_NEAR(hull[i].probability, exact[i].probability, 1e-9);
+      EXPECT_LT((hull[i].normal - exact[i].normal).norm(), 1e-12);
+      EXPECT_LT(hull[i].orientation.angularDistance(exact[i].orientation), 1e-9);
+      EXPECT_NEAR(hull[i].bounds.bottomZ, exact[i].bounds.bottomZ, 1e-12);
+      EXPECT_FALSE(hull[i].rolling);
+    }
   }
 }
 
