@@ -7,6 +7,11 @@
 namespace placement_samplers::detail {
 
 ConvexHull HullBuilder::build(int v0, int v1, int v2, int v3) {
+  // Faces and edges in use stay below twice and six times the points; at most this much is
+  // reserved ahead (larger sets grow as needed).
+  const std::size_t expected = std::min<std::size_t>(p_.size(), 1 << 17);
+  faces_.reserve(2 * expected + 4);
+  edges_.reserve(6 * expected + 12);
   initialSimplex(v0, v1, v2, v3);
   while (!pending_.empty()) {
     const int f = pending_.back();
@@ -280,7 +285,8 @@ void HullBuilder::recycle() {
     int e = faces_[v].edge;
     for (int i = 0; i < faces_[v].vertexCount; ++i) {
       const int next = edges_[e].next;
-      deadEdges_.push_back(e);
+      edges_[e].face = -1;
+      freeEdges_.push_back(e);
       e = next;
     }
     faces_[v].mark = Mark::Deleted;
@@ -319,17 +325,13 @@ ConvexHull HullBuilder::output() const {
       continue;
     }
     int e = faces_[f].edge;
-    const Eigen::Vector3d& origin = p_[tail(e)];
-    Eigen::Vector3d twiceArea = Eigen::Vector3d::Zero();
     do {
       hull.vertices.push_back(tail(e));
       hull.neighbours.push_back(index[static_cast<std::size_t>(twinFace(e))]);
-      twiceArea += (p_[tail(e)] - origin).cross(p_[edges_[e].head] - origin);
       e = edges_[e].next;
     } while (e != faces_[f].edge);
     hull.start.push_back(static_cast<int>(hull.vertices.size()));
-    const double norm = twiceArea.norm();
-    hull.normals.push_back(norm > 0.0 ? Eigen::Vector3d(twiceArea / norm) : faces_[f].normal);
+    hull.normals.push_back(faces_[f].normal);  // computePlane's, from the final polygon
   }
   return hull;
 }

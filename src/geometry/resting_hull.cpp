@@ -302,6 +302,13 @@ RestingHull restingHull(const std::vector<Shape>& shapes, const RestingOptions& 
     const int* corner = hull.vertices.data() + hull.start[f];
     const int count = hull.cornerCount(f);
     const Eigen::Vector3d& n = hull.normals[f];
+    if (!(n.squaredNorm() > 0.5)) {  // a face of no area (not seen): no share, not stable
+      r.share[f] = 0.0;
+      r.height[f] = std::numeric_limits<double>::infinity();
+      r.depth[f] = -std::numeric_limits<double>::infinity();
+      r.next[f] = hull.neighbours[static_cast<std::size_t>(hull.start[f])];
+      continue;
+    }
     auto at = [&](int k) -> const Eigen::Vector3d& {
       return points[static_cast<std::size_t>(corner[k % count])];
     };
