@@ -93,6 +93,49 @@ Shape tessellatedBoxMesh() {
   return meshShape(mesh);
 }
 
+/// A cup of radius 0.05 m and height 0.1 m with 4 mm walls and a 6 mm bottom: a profile of 200
+/// points (outer bottom, outer wall, rim, inner wall, inner bottom) turned through 250 segments,
+/// closed at the two centres: 100,000 triangles, not convex (the inside).
+Shape cupMesh() {
+  constexpr int kSegments = 250;
+  const double radius = 0.05, height = 0.1, wall = 0.004, bottom = 0.006;
+  std::vector<Eigen::Vector2d> profile;  // (r, z)
+  for (int i = 1; i <= 20; ++i) {
+    profile.emplace_back(radius * i / 20.0, 0.0);
+  }
+  for (int j = 1; j <= 80; ++j) {
+    profile.emplace_back(radius, height * j / 80.0);
+  }
+  profile.emplace_back(radius - wall, height);
+  for (int j = 1; j <= 79; ++j) {
+    profile.emplace_back(radius - wall, height - (height - bottom) * j / 79.0);
+  }
+  for (int i = 1; i <= 20; ++i) {
+    profile.emplace_back((radius - wall) * (1.0 - i / 21.0), bottom);
+  }
+  const int rings = static_cast<int>(profile.size());
+  auto mesh = std::make_shared<Mesh>();
+  mesh->vertices.emplace_back(0.0, 0.0, 0.0);
+  for (const Eigen::Vector2d& rz : profile) {
+    for (int k = 0; k < kSegments; ++k) {
+      const double t = 2.0 * M_PI * k / kSegments;
+      mesh->vertices.emplace_back(rz.x() * std::cos(t), rz.x() * std::sin(t), rz.y());
+    }
+  }
+  mesh->vertices.emplace_back(0.0, 0.0, bottom);
+  const int last = static_cast<int>(mesh->vertices.size()) - 1;
+  auto at = [](int ring, int k) { return 1 + (ring - 1) * kSegments + k % kSegments; };
+  for (int k = 0; k < kSegments; ++k) {
+    mesh->triangles.emplace_back(0, at(1, k + 1), at(1, k));
+    mesh->triangles.emplace_back(last, at(rings, k), at(rings, k + 1));
+    for (int j = 1; j < rings; ++j) {
+      mesh->triangles.emplace_back(at(j, k), at(j + 1, k + 1), at(j + 1, k));
+      mesh->triangles.emplace_back(at(j, k), at(j, k + 1), at(j + 1, k + 1));
+    }
+  }
+  return meshShape(mesh);
+}
+
 Shape lBlockHullMesh() {
   auto mesh = std::make_shared<Mesh>();
   const double xy[6][2] = {{-0.04, -0.04}, {0.04, -0.04}, {0.04, -0.02},
@@ -124,6 +167,7 @@ void benchResting(int repetitions) {
   const std::vector<Case> cases = {
       {"ellipsoid mesh (convex)", "100000", {ellipsoid}},
       {"ellipsoid vertices (quickhull)", "", {ellipsoidVertices}},
+      {"cup mesh (not convex: quickhull)", "100000", {cupMesh()}},
       {"tessellated box (quickhull)", "99372", {tessellatedBoxMesh()}},
       {"mug: cylinder + box handle", "", {Shape::cylinder(0.04, 0.1), handle}},
       {"L-block (12 vertices)", "", {lBlockHullMesh()}},

@@ -25,9 +25,8 @@ struct MeshEdges {
   int head(int e) const { return heads[static_cast<std::size_t>(e)]; }
 };
 
-/// Fills the edges grouped by vertex and the twin of each; false when an edge is not matched by
-/// exactly one edge the other way, or a vertex has no triangle.
-bool linkEdges(MeshEdges& m, const std::vector<Eigen::Vector3i>& triangles, std::size_t vertices) {
+/// Fills the edges grouped by vertex; false when a vertex has no triangle.
+bool groupEdges(MeshEdges& m, const std::vector<Eigen::Vector3i>& triangles, std::size_t vertices) {
   const int edges = static_cast<int>(3 * triangles.size());
   m.tails.resize(static_cast<std::size_t>(edges));
   m.heads.resize(static_cast<std::size_t>(edges));
@@ -52,6 +51,13 @@ bool linkEdges(MeshEdges& m, const std::vector<Eigen::Vector3i>& triangles, std:
   for (int e = 0; e < edges; ++e) {
     m.outgoing[static_cast<std::size_t>(cursor[static_cast<std::size_t>(m.tail(e))]++)] = e;
   }
+  return true;
+}
+
+/// Fills the twin of each edge; false when an edge is not matched by exactly one edge the other
+/// way.
+bool matchTwins(MeshEdges& m) {
+  const int edges = static_cast<int>(m.tails.size());
   m.twin.assign(static_cast<std::size_t>(edges), -1);
   for (int e = 0; e < edges; ++e) {
     const int a = m.tail(e), b = m.head(e);
@@ -95,7 +101,7 @@ std::optional<ConvexHull> convexMeshHull(const std::vector<Eigen::Vector3d>& poi
     return std::nullopt;
   }
   MeshEdges m;
-  if (!linkEdges(m, triangles, vertexCount)) {
+  if (!groupEdges(m, triangles, vertexCount)) {
     return std::nullopt;
   }
   auto at = [&](int vertex) -> const Eigen::Vector3d& {
@@ -125,6 +131,9 @@ std::optional<ConvexHull> convexMeshHull(const std::vector<Eigen::Vector3d>& poi
         }
       }
     }
+  }
+  if (!matchTwins(m)) {
+    return std::nullopt;
   }
   // Faces: triangles grown from a seed while all their corners lie within the tolerance of the
   // seed's plane. (No check that the surface is one piece: with V - E + F = 2 a second piece
