@@ -76,7 +76,8 @@ ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points) {
   }
   if (n < 4) {
     throw std::invalid_argument("convex hull: " + std::to_string(n) +
-                                " points span no volume (at least four are needed)");
+                                (n == 1 ? " point spans" : " points span") +
+                                " no volume (at least four are needed)");
   }
   Eigen::Vector3d lo = points[0], hi = points[0];
   int loIndex[3] = {0, 0, 0}, hiIndex[3] = {0, 0, 0};

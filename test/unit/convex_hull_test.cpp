@@ -303,6 +303,8 @@ TEST(ConvexHull, DegenerateInputIsRefused) {
   EXPECT_EQ(
       hullError({Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()}),
       "convex hull: 3 points span no volume (at least four are needed)");
+  EXPECT_EQ(hullError({Eigen::Vector3d::Zero()}),
+            "convex hull: 1 point spans no volume (at least four are needed)");
   EXPECT_EQ(hullError(Points(5, Eigen::Vector3d(1, 2, 3))),
             "convex hull: all 5 points are at one place, they span no volume");
   Points line, plane;
