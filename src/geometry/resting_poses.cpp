@@ -6,8 +6,8 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
-#include <tuple>
 #include <string>
+#include <tuple>
 
 #include "geometry/convex_hull.hpp"
 #include "geometry/resting_hull.hpp"
