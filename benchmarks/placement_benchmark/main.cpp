@@ -8,6 +8,7 @@
 
 #include "bench_support.hpp"
 #include "physics.hpp"
+#include "resting.hpp"
 #include "placement_samplers/process/malloc_tuning.hpp"
 
 using namespace bench;
@@ -17,7 +18,7 @@ namespace {
 int usage(const char* self) {
   std::fprintf(stderr,
                "usage: %s [--config-dir DIR] [--quick] [--default-malloc] [--only "
-               "envs|blocks|clutter|strategies|fcl|batch|physics|surfaces]\n"
+               "envs|blocks|clutter|strategies|fcl|batch|physics|surfaces|resting]\n"
                "       %s [--quick] --config FILE [--config FILE ...]\n"
                "Times the samplers on fixed configurations and seeds and prints tables.\n"
                "DIR holds lift.yaml, stack.yaml, nut_assembly.yaml and pick_place.yaml\n"
@@ -49,7 +50,8 @@ int main(int argc, char** argv) {
     } else if (arg == "--only" && i + 1 < argc) {
       only = argv[++i];
       if (only != "envs" && only != "blocks" && only != "clutter" && only != "strategies" &&
-          only != "fcl" && only != "batch" && only != "physics" && only != "surfaces") {
+          only != "fcl" && only != "batch" && only != "physics" && only != "surfaces" &&
+          only != "resting") {
         return usage(argv[0]);
       }
     } else {
@@ -93,6 +95,9 @@ int main(int argc, char** argv) {
     }
     if (only.empty() || only == "surfaces") {
       benchSurfaces(options);
+    }
+    if (only.empty() || only == "resting") {
+      placement_samplers::benchmark::benchResting(4 * options.repetitions + 1);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "placement_benchmark: %s\n", e.what());

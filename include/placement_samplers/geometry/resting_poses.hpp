@@ -27,22 +27,32 @@ struct RestingPose {
 };
 
 struct RestingOptions {
-  /// A face is stable when the centre of mass projects inside it by at least this [m].
+  /// A face is stable when the centre of mass projects inside it by at least this [m]
+  /// (inside the face's true contact with the support, for polygons standing for round shapes).
   double margin = 1e-3;
   /// Also list the neutral poses that roll (a cylinder, a capsule on its side).
   bool allowRolling = false;
 };
 
 /// The centre of mass of @p shapes in their frame under a uniform density, as the physics'
-/// mass model computes it (each shape's own volume: overlaps count twice) [m].
+/// MuJoCo model has it [m]: each shape weighs its own volume (overlaps count twice); a mesh is
+/// its vertices' convex hull, centred at the hull's centroid and weighed, as MuJoCo 2.2.2 does,
+/// by the volume of the box with the hull's inertia (a flat mesh weighs nothing).
+/// @throw std::invalid_argument when @p shapes is empty or encloses no volume
 Eigen::Vector3d centreOfMass(const std::vector<Shape>& shapes);
 
 /// The resting poses of @p shapes (one object's collision geometry, in its frame), most probable
-/// first (ties: the order of their normals' x, y, z). Primitives exact (a box: its six faces; a
-/// cylinder: its two caps, and its side when rolling is allowed; a sphere: none), others through
-/// the convex hull of their vertices (cylinders and spheres as inscribed polygons), with each
-/// unstable face's share passed on to the face it topples onto. An object with no stable face
-/// (a sphere) has none: the caller keeps its upright pose.
+/// first (ties, to 1e-12: by their normals' x, then y, then z). Primitives exact (a box: its six
+/// faces; a cylinder: its two caps, and its side when rolling is allowed; a capsule: its side
+/// when rolling is allowed; a sphere: none), others through the convex hull of their vertices
+/// (cylinders, spheres and capsules as inscribed 64-gons), with each unstable face's share
+/// passed on to the face it topples onto (docs/design.md, "Resting poses"). Shares that end
+/// rolling (on the polygons of a round side, or on faces too small for the margin) make one
+/// rolling pose each with RestingOptions::allowRolling, and are dropped otherwise; the others
+/// are renormalised. An object with no stable face (a sphere) has none: the caller keeps its
+/// upright pose. Deterministic: the same shapes give the same poses, bit for bit.
+/// @throw std::invalid_argument for geometry that spans no volume (a flat or straight mesh),
+///   more than a million hull points, or a negative or non-finite margin
 std::vector<RestingPose> restingPoses(const std::vector<Shape>& shapes,
                                       const RestingOptions& options = RestingOptions());
 
