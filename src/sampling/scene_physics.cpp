@@ -56,6 +56,10 @@ ScenePhysics::ScenePhysics(const SceneConfig& config, const PreparedRequest& req
             }
           }
           bodyIndex_[object.get()] = static_cast<int>(bodies_.size());
+          // Under resting: stable a placement points at the object in its pose: same body.
+          for (const UniformRandomSampler::RestingChoice& c : sampler.restingChoices(*object)) {
+            bodyIndex_[c.object] = static_cast<int>(bodies_.size());
+          }
           const double density = object->density > 0.0 ? object->density : settings_.density;
           bodies_.push_back(PhysicsBody{object.get(), zOffset, density});
         }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -173,6 +174,47 @@ TEST(RestingSampler, DescribeListsThePosesAndTheJsonTheirIndex) {
   const std::string line = sceneToJson(s.results[0]);
   EXPECT_NE(line.find("\"rest_pose\": " + std::to_string(s.results[0].placements[0].restPose)),
             std::string::npos);
+}
+
+TEST(RestingSampler, EveryPoseStaysPutUnderPhysics) {
+  // A brick, a mug with a handle and a bottle in their resting poses on the table, simulated
+  // for 2 s: none moves 1 cm or turns 0.1 rad.
+  const std::string yaml = kObjects + R"(
+  mug:
+    shapes:
+      - {shape: cylinder, radius: 0.04, length: 0.1}
+      - {shape: box, size: [0.03, 0.015, 0.07], position: [0.05, 0, 0]}
+  bottle: {shape: cylinder, radius: 0.035, length: 0.22}
+physics_seconds: 2.0
+samplers:
+  - {name: S, objects: [brick, mug, bottle], region: {shape: surface, of: t1}, resting: stable}
+)";
+  std::string text = yaml;
+  // The extra objects belong under objects: (kObjects ends with the fixtures).
+  const std::size_t fixtures = text.find("fixtures:");
+  const std::size_t extra = text.find("  mug:");
+  const std::size_t end = text.find("physics_seconds:");
+  const std::string objects = text.substr(extra, end - extra);
+  text.erase(extra, end - extra);
+  text.insert(fixtures, objects);
+  const SceneGenerator generator(buildFromYaml(text));
+  SampleRequest request;
+  request.physics = PhysicsMode::Check;
+  const PreparedRequest prepared = generator.prepare(request);
+  std::map<std::string, std::set<int>> posesSeen;
+  for (const SceneResult& scene : generator.sampleScenes(prepared, 5, 60, 2)) {
+    ASSERT_TRUE(scene.success) << scene.message;
+    ASSERT_TRUE(scene.simulated);
+    ASSERT_EQ(scene.physics.size(), scene.placements.size());
+    for (std::size_t i = 0; i < scene.placements.size(); ++i) {
+      posesSeen[std::string(scene.placements[i].name)].insert(scene.placements[i].restPose);
+      EXPECT_LT(scene.physics[i].moved, 0.01) << scene.placements[i].name;
+      EXPECT_LT(scene.physics[i].turned, 0.1) << scene.placements[i].name;
+      EXPECT_FALSE(scene.physics[i].fallen);
+    }
+  }
+  EXPECT_GE(posesSeen["brick"].size(), 4u);
+  EXPECT_GE(posesSeen["mug"].size(), 3u);
 }
 
 TEST(RestingSampler, ConfigurationErrors) {
