@@ -307,7 +307,11 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
     growExtent(o ? o->sampledPosition : p.position,
                Eigen::Vector2d::Constant(p.object->horizontalRadius), lo, hi);
     if (o == nullptr || !unsettled(*o, physics)) {
-      builder.label(p.name, p.position, p.object->topOffset.z() + gap);
+      // Under resting: stable the label gives the resting pose (its index in --describe).
+      builder.label(p.restPose == ObjectPlacement::kUpright
+                        ? std::string(p.name)
+                        : std::string(p.name) + " (pose " + std::to_string(p.restPose) + ")",
+                    p.position, p.object->topOffset.z() + gap);
       continue;
     }
     // Unsettled: a red outline where the answer has it; under settle also a faint copy at the

@@ -15,8 +15,9 @@ namespace ros_interface {
 
 /// Markers of one scene in @p frameId: a DELETEALL first, then each placed object's collision
 /// shapes (namespace "objects", in the colour of its name), each fixture's ("fixtures", grey),
-/// the name of each above it ("labels"), each uniform sampler's region ("regions": a thin
-/// translucent box for x_range/y_range, a TRIANGLE_LIST for other shapes) and its keep-out zones
+/// the name of each above it ("labels"; "mug (pose 2)" for an object in a resting pose), each
+/// uniform sampler's region ("regions": a thin translucent box for x_range/y_range, a TRIANGLE_LIST
+/// for other shapes) and its keep-out zones
 /// ("keep_out", red triangles), the support surfaces of surface regions ("surfaces", blue
 /// triangles with a label giving each one's index and clearance). Hidden objects are left out.
 ///
