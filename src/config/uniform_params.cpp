@@ -80,9 +80,10 @@ UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAt
   if (const ConfigNode* n = s.get("resting")) {
     const std::string& resting = n->asString();
     if (resting != "upright" && resting != "stable") {
-      n->fail("expected upright (the objects as configured, robosuite's) or stable (every pose "
-              "they rest in), got " +
-              quoteText(resting));
+      n->fail(
+          "expected upright (the objects as configured, robosuite's) or stable (every pose "
+          "they rest in), got " +
+          quoteText(resting));
     }
     p.resting = resting == "stable" ? UniformSamplerParams::Resting::Stable
                                     : UniformSamplerParams::Resting::Upright;
