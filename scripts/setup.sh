@@ -36,6 +36,9 @@ PS_PACKAGES=(
   libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev
   # MJCF objects are read and bounded before MuJoCo compiles them (the XML parser MuJoCo uses).
   libtinyxml2-dev
+  # ctest slurm_array runs the array-job scripts (scripts/slurm) on a real Slurm cluster of this
+  # host: slurmctld, slurmd and their munge authentication.
+  slurm-wlm munge
 )
 
 ps_sudo() {
