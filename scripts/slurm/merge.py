@@ -33,6 +33,7 @@ PER_FILE = {"names", "seed"}
 # The fields of task_<T>.json that must be equal in every task of one run.
 RUN_FIELDS = ("config", "config_sha256", "seed", "scenes", "flags")
 CHUNK = 8 << 20  # bytes copied at a time
+STAMP = (1980, 1, 1, 0, 0, 0)  # as sample_scenes: the same pieces give the same file bytes
 
 TASK_FILE = re.compile(r"^task_(\d+)\.(npz|json)$")
 
@@ -188,6 +189,13 @@ def copy_member(src, name, skip, dst, size):
             raise BadPiece("%s is longer than its header says" % name)
 
 
+def member(out, name):
+    """A stored member of out, written as a stream."""
+    info = zipfile.ZipInfo(name + ".npy", date_time=STAMP)
+    info.compress_type = zipfile.ZIP_STORED
+    return out.open(info, "w", force_zip64=True)
+
+
 def write_merged(path, tasks, pieces, per_task):
     """Writes the joined arrays to path (through a temporary file in its folder)."""
     order = list(pieces[tasks[0]].members)  # the members in the pieces' order
@@ -195,18 +203,21 @@ def write_merged(path, tasks, pieces, per_task):
     folder = os.path.dirname(os.path.abspath(path))
     fd, tmp = tempfile.mkstemp(prefix=".merge.", suffix=".npz", dir=folder)
     os.close(fd)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)  # a file as any other, not mkstemp's private one
     try:
         with zipfile.ZipFile(tmp, "w", zipfile.ZIP_STORED, allowZip64=True) as out:
             for name in order:
                 shape, dtype, _ = pieces[tasks[0]].members[name]
                 if name not in PER_SCENE:  # equal in every piece: the first one's, as it is
                     with zipfile.ZipFile(pieces[tasks[0]].path) as z:
-                        with out.open(name + ".npy", "w", force_zip64=True) as f:
+                        with member(out, name) as f:
                             f.write(z.read(name + ".npy"))
                     continue
                 header = {"descr": np.lib.format.dtype_to_descr(dtype), "fortran_order": False,
                           "shape": (total,) + tuple(shape[1:])}
-                with out.open(name + ".npy", "w", force_zip64=True) as f:
+                with member(out, name) as f:
                     np.lib.format.write_array_header_1_0(f, header)
                     for task in tasks:
                         piece = pieces[task]

@@ -2,7 +2,8 @@
 # launch/two_hosts.launch: as roslaunch reads it, each placement server runs on its <machine>
 # (host_a, host_b) in its own namespace with its host's address as ROS_HOSTNAME, and a host that
 # is not this one is started over ssh through scripts/env_loader; launched with both hosts
-# localhost, both services answer on one master, each with its own configuration and tf prefix.
+# localhost, both services answer on one master (also to the README's loop), each with its own
+# configuration and tf prefix.
 # scripts/env_loader sets up the workspace and takes ssh's server address as ROS_HOSTNAME.
 # Needs the devel space's environment (ctest gives it through env.sh).
 # usage: two_hosts_launch_test.sh SOURCE_DIR BUILD_DIR
@@ -60,6 +61,11 @@ out=$(rosservice call /cell_b/placement_server/sample_placements "{seed: 5}" 2>&
 echo "$out" | grep -q "success: True" || fail "cell_b: $out"
 names=$(echo "$out" | sed -n 's/^ *name: "\{0,1\}\([A-Za-z0-9_]*\)"\{0,1\}$/\1/p' | tr '\n' ' ')
 [ "$names" = "cube " ] || fail "cell_b should place lift.yaml's cube, got: $names"
+# The README's loop over both instances, as written.
+readme_loop=$(grep -m 1 '^for ns in cell_a cell_b; do rosservice call' "$root/README.md") ||
+  fail "README.md has no loop calling both instances"
+out=$(bash -c "$readme_loop" 2>&1) || fail "$readme_loop: $out"
+[ "$(echo "$out" | grep -c '^success: True')" -eq 2 ] || fail "$readme_loop: $out"
 # Frames apart: each scene names its instance's tf prefix.
 for ns in cell_a cell_b; do
   prefix=$(rostopic echo -n 1 "/$ns/placement_server/scene/tf_prefix" 2>/dev/null | head -n 1)
