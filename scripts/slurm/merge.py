@@ -42,6 +42,14 @@ class BadPiece(Exception):
     """A piece that cannot be merged; the message says why."""
 
 
+class BadTask(Exception):
+    """A piece found bad while it was copied (a CRC error): its task and why."""
+
+    def __init__(self, task, why):
+        super().__init__(why)
+        self.task = task
+
+
 class UnknownArray(Exception):
     """A member this script does not know how to join (a newer sample_scenes?)."""
 
@@ -83,18 +91,19 @@ class Piece:
                 for name in ("names", "seed", "scene"):
                     if name not in self.members:
                         raise BadPiece("no %r array" % name)
+                for name, (shape, _, _) in self.members.items():
+                    if name not in PER_SCENE and name not in PER_FILE and len(shape) != 0:
+                        raise UnknownArray(
+                            "array %r (shape %s) is neither a known per-scene array nor a scalar: "
+                            "this merge.py does not know how to join it" % (name, shape))
                 # names, seed and any other scalar (a digest): equal in every piece.
                 self.constants = {n: self.read(z, n) for n in self.members if n not in PER_SCENE}
                 scene = self.read(z, "scene")
         except (OSError, zipfile.BadZipFile, ValueError, EOFError) as e:
             raise BadPiece("not a complete .npz (%s)" % e)
         for name, (shape, _, _) in self.members.items():
-            if name in PER_SCENE:
-                if len(shape) == 0 or shape[0] != scenes:
-                    raise BadPiece("%s has shape %s, expected %d scenes" % (name, shape, scenes))
-            elif name not in PER_FILE and len(shape) != 0:
-                raise UnknownArray("array %r (shape %s) is neither a known per-scene array nor a "
-                               "scalar: this merge.py does not know how to join it" % (name, shape))
+            if name in PER_SCENE and (len(shape) == 0 or shape[0] != scenes):
+                raise BadPiece("%s has shape %s, expected %d scenes" % (name, shape, scenes))
         if int(self.constants["seed"]) != seed:
             raise BadPiece("seed %d, expected %d" % (int(self.constants["seed"]), seed))
         expected = np.arange(first, first + scenes, dtype=np.uint64)
@@ -226,12 +235,29 @@ def write_merged(path, tasks, pieces, per_task):
                         try:
                             with zipfile.ZipFile(piece.path) as z:
                                 copy_member(z, name, offset, f, size)
-                        except (OSError, zipfile.BadZipFile) as e:
-                            raise BadPiece("task %d: %s: %s" % (task, piece.path, e))
+                        except (OSError, zipfile.BadZipFile, BadPiece) as e:
+                            raise BadTask(task, "task_%06d.npz: %s" % (task, e))
         os.replace(tmp, path)
     except BaseException:
         os.unlink(tmp)
         raise
+
+
+def report(problems, count, run, out_dir):
+    """Names each bad task and prints the sbatch command that re-runs exactly those: status 1."""
+    print("merge.py: %d of %d tasks are missing or not usable; nothing written:" % (
+        len(problems), count), file=sys.stderr)
+    for task, problem in sorted(problems.items()):
+        print("  task %d: %s" % (task, problem), file=sys.stderr)
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "sample_array.sbatch")
+    command = ["sbatch", "--array=" + task_ranges(sorted(problems))]
+    if run.get("partition"):
+        command.append("--partition=" + run["partition"])
+    command += [script, run["config"], str(run["seed"]), str(run["scenes"]), out_dir]
+    command += run.get("flags") or []
+    print("re-run only those (with the first submission's other sbatch options), then merge "
+          "again:\n  " + " ".join(shlex.quote(c) for c in command), file=sys.stderr)
+    return 1
 
 
 def main():
@@ -305,25 +331,11 @@ def main():
             problems[task] = problem
 
     if problems:
-        print("merge.py: %d of %d tasks are missing or not usable; nothing written:" % (
-            len(problems), count), file=sys.stderr)
-        for task, problem in sorted(problems.items()):
-            print("  task %d: %s" % (task, problem), file=sys.stderr)
-        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "sample_array.sbatch")
-        sbatch = ["sbatch", "--array=" + task_ranges(sorted(problems))]
-        if run.get("partition"):
-            sbatch.append("--partition=" + run["partition"])
-        command = sbatch + [script, run["config"], str(seed), str(per_task), out_dir]
-        command += run.get("flags") or []
-        print("re-run only those (with the first submission's other sbatch options), then merge "
-              "again:\n  " + " ".join(shlex.quote(c) for c in command), file=sys.stderr)
-        return 1
-
+        return report(problems, count, run, out_dir)
     try:
         write_merged(args.merged, tasks, pieces, per_task)
-    except BadPiece as e:
-        print("merge.py: %s; nothing written" % e, file=sys.stderr)
-        return 1
+    except BadTask as e:
+        return report({e.task: str(e)}, count, run, out_dir)
     except OSError as e:
         print("merge.py: cannot write %s: %s" % (args.merged, e), file=sys.stderr)
         return 2

@@ -2,7 +2,7 @@
 # scripts/slurm without Slurm: sample_array.sbatch run by hand as tasks 0-3 (SLURM_ARRAY_TASK_ID)
 # and merge.py's file equal array for array to one process's run; the script's usage errors; and
 # merge.py on every kind of bad task (failed, stopped by SIGTERM, lost, truncated, another seed,
-# other scenes, never started, tasks of two runs): each named with its reason, nothing written,
+# other scenes, never started, data that fails its CRC, tasks of two runs): each named with its reason, nothing written,
 # one sbatch command for exactly those tasks.
 # usage: merge_test.sh SAMPLE_SCENES SOURCE_DIR
 set -euo pipefail
@@ -114,6 +114,25 @@ expect 1 "$(printf "$rerun" 1-3)" "$merge" "$dir/bad" "$dir/m.npz"
 # --tasks: the array is larger than its tasks said.
 # shellcheck disable=SC2059
 expect 1 "$(printf "${rerun/bad/good}" 4-5)" "$merge" "$dir/good" "$dir/m.npz" --tasks 6
+
+# A piece whose data went bad after it was written: found by its CRC while copying.
+rm -rf "$dir/bad" && cp -r "$dir/good" "$dir/bad"
+$python - "$dir/bad/task_000001.npz" <<'PY'
+import struct, sys, zipfile
+with zipfile.ZipFile(sys.argv[1]) as z:
+    info = z.getinfo("position.npy")
+with open(sys.argv[1], "r+b") as f:
+    f.seek(info.header_offset + 26)
+    name_len, extra_len = struct.unpack("<HH", f.read(4))
+    f.seek(info.header_offset + 30 + name_len + extra_len + info.file_size - 8)  # the last double
+    byte = f.read(1)
+    f.seek(-1, 1)
+    f.write(bytes([byte[0] ^ 1]))
+PY
+expect 1 "  task 1: task_000001.npz: Bad CRC-32 for file 'position.npy'" "$merge" "$dir/bad" "$dir/m.npz"
+# shellcheck disable=SC2059
+expect 1 "$(printf "$rerun" 1)" "$merge" "$dir/bad" "$dir/m.npz"
+[ ! -e "$dir/m.npz" ] && ! ls -a "$dir" | grep -q '^\.merge\.' || fail "merge.py left a file after a CRC error"
 
 # Two runs in one folder: which is right is the user's call (status 2).
 rm -rf "$dir/bad" && cp -r "$dir/good" "$dir/bad"
