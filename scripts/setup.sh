@@ -50,6 +50,9 @@ PS_PACKAGES=(
   # placement_samplers.robosuite, the Python module: pybind11 over the core, with Python's and
   # numpy's C headers (python3-numpy above).
   pybind11-dev python3-dev
+  # ctest slurm_array runs the array-job scripts (scripts/slurm) on a real Slurm cluster of this
+  # host: slurmctld, slurmd and their munge authentication.
+  slurm-wlm munge
 )
 
 ps_sudo() {
