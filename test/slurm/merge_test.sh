@@ -44,6 +44,10 @@ expect 2 "sample_array.sbatch: SLURM_ARRAY_TASK_ID: expected the task's index (0
   "$script" "$config" 7 50 "$dir/x"
 expect 2 "sample_array.sbatch: SEED: expected a positive integer (0 = random would differ between tasks), got '0'" \
   env SLURM_ARRAY_TASK_ID=0 "$script" "$config" 0 50 "$dir/x"
+expect 2 "sample_array.sbatch: SEED: expected a positive integer (0 = random would differ between tasks), got '00'" \
+  env SLURM_ARRAY_TASK_ID=0 "$script" "$config" 00 50 "$dir/x"
+expect 2 "sample_array.sbatch: --describe: prints JSON lines, not a piece of a data set" \
+  env SLURM_ARRAY_TASK_ID=0 "$script" "$config" 7 50 "$dir/x" --describe
 expect 2 "sample_array.sbatch: --scenes: this script sets --config, --seed, --scenes, --first-scene, --output and --threads itself" \
   env SLURM_ARRAY_TASK_ID=0 "$script" "$config" 7 50 "$dir/x" --scenes 3
 expect 2 "sample_array.sbatch: CONFIG: no readable file '$dir/none.yaml'" \
@@ -56,7 +60,7 @@ for t in 0 1 2 3; do task "$t" "$dir/good"; done
 "$merge" "$dir/good" "$dir/merged.npz"
 $python "$root/test/slurm/npz_equal.py" "$dir/merged.npz" "$dir/one.npz" ||
   fail "merged by-hand tasks differ from one process"
-ls "$dir/good" | grep -q partial && fail "a .partial.npz was left"
+! compgen -G "$dir/good/*.partial.npz" >/dev/null || fail "a .partial.npz was left"
 # The same pieces give the same bytes (fixed time stamps, as sample_scenes' own files).
 "$merge" "$dir/good" "$dir/merged_again.npz" >/dev/null
 cmp -s "$dir/merged.npz" "$dir/merged_again.npz" || fail "two merges of the same pieces differ"
@@ -132,7 +136,7 @@ PY
 expect 1 "  task 1: task_000001.npz: Bad CRC-32 for file 'position.npy'" "$merge" "$dir/bad" "$dir/m.npz"
 # shellcheck disable=SC2059
 expect 1 "$(printf "$rerun" 1)" "$merge" "$dir/bad" "$dir/m.npz"
-[ ! -e "$dir/m.npz" ] && ! ls -a "$dir" | grep -q '^\.merge\.' || fail "merge.py left a file after a CRC error"
+[ ! -e "$dir/m.npz" ] && ! compgen -G "$dir/.merge.*" >/dev/null || fail "merge.py left a file after a CRC error"
 
 # Two runs in one folder: which is right is the user's call (status 2).
 rm -rf "$dir/bad" && cp -r "$dir/good" "$dir/bad"

@@ -170,12 +170,20 @@ stop_cluster() {
     wait "$p" 2>/dev/null || true
   done
   slurm_pids=()
-  # slurmstepd and the jobs outlive slurmd by design.
-  for i in 1 2 3; do
+  # slurmstepd and the jobs outlive slurmd by design. A job that was starting may still exec its
+  # script (a child of slurmstepd between fork and exec has neither mark): done only after
+  # three empty looks in a row, 5 s at most.
+  local quiet=0
+  for i in $(seq 25); do
     left=$(slurm_leftovers)
-    [ -n "$left" ] || break
-    # shellcheck disable=SC2086
-    kill -KILL $left 2>/dev/null || true
+    if [ -n "$left" ]; then
+      # shellcheck disable=SC2086
+      kill -KILL $left 2>/dev/null || true
+      quiet=0
+    else
+      quiet=$((quiet + 1))
+      [ "$quiet" -lt 3 ] || break
+    fi
     sleep 0.2
   done
   slurm_left=$(slurm_leftovers)

@@ -11,6 +11,8 @@ export SAMPLE_SCENES=$1
 root=$2
 source "$root/test/slurm/single_host_cluster.sh"
 trap stop_cluster EXIT
+trap "exit 143" TERM  # the EXIT trap stops the cluster on these too
+trap "exit 130" INT HUP
 config=$root/config/lift.yaml
 seed=11
 per_task=25
