@@ -85,10 +85,7 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
       candidate.orientation = sampleOrientation(engine, posed);
     }
     const double margin = params_.ensureObjectBoundaryInRange ? posed.horizontalRadius : 0.0;
-    for (std::size_t i = 0; i < params_.keepOut.size() && !blocked; ++i) {
-      const KeepOutZone& zone = params_.keepOut[i];
-      blocked = keepOutBlocks(zone, zone.world ? Eigen::Vector2d(local + offset) : local, margin);
-    }
+    blocked = blocked || inKeepOut(local, offset, margin);
     if (blocked) {
       ++outside;
       continue;

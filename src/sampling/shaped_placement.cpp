@@ -102,11 +102,7 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
     if (orientFirst) {
       candidate.orientation = sampleOrientation(engine, object);
     }
-    bool blocked = !entry.draw->accepts(local);
-    for (std::size_t i = 0; i < params_.keepOut.size() && !blocked; ++i) {
-      const KeepOutZone& zone = params_.keepOut[i];
-      blocked = keepOutBlocks(zone, zone.world ? local + offset : local, margin);
-    }
+    const bool blocked = !entry.draw->accepts(local) || inKeepOut(local, offset, margin);
     if (blocked) {
       ++outside;
       continue;

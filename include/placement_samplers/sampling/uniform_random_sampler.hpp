@@ -212,6 +212,16 @@ class UniformRandomSampler : public PlacementSampler {
   /// fail() for a request whose time ran out while placing @p object. @return false
   bool failOutOfTime(SampleContext& context, const ObjectModel& object,
                      std::uint32_t attempts) const;
+  /// True when a disk of radius @p margin at @p local (relative to the reference; @p offset is
+  /// the reference's x-y) reaches into one of the keep-out zones, in order.
+  bool inKeepOut(const Eigen::Vector2d& local, const Eigen::Vector2d& offset, double margin) const {
+    for (const KeepOutZone& zone : params_.keepOut) {
+      if (keepOutBlocks(zone, zone.world ? Eigen::Vector2d(local + offset) : local, margin)) {
+        return true;
+      }
+    }
+    return false;
+  }
   /// Checks region and keep-out zones (constructor).
   void checkShapes(const std::string& where);
   /// The draws for @p object, shared by the objects of one horizontal radius (addObjects()).
