@@ -115,6 +115,10 @@ NodeName=$host NodeAddr=127.0.0.1 $hw State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
   : >"$slurm_dir/plugstack.conf"
+  # slurmd 22.05 starts a cgroup plugin even with proctrack/linuxproc and task/none, and its
+  # autodetection fails where /sys/fs/cgroup is not mounted (a chroot): name the v1 plugin, which
+  # touches no cgroup until a cgroup plugin of proctrack or task asks for one.
+  printf 'CgroupPlugin=cgroup/v1\nCgroupAutomount=no\n' >"$slurm_dir/cgroup.conf"
   env PS_SLURM_CLUSTER="$slurm_dir" SLURM_CONF="$slurm_dir/slurm.conf" slurmctld -D -i \
     >>"$slurm_dir/log/slurmctld.out" 2>&1 &
   slurm_pids+=($!)
