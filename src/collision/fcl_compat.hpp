@@ -20,6 +20,8 @@
 #include <Eigen/Geometry>
 #include <memory>
 
+#include "collision/upright_prism.hpp"
+
 #if FCL_MAJOR_VERSION != 0 || FCL_MINOR_VERSION < 6 || FCL_MINOR_VERSION > 7
 #error "placement_samplers is written for FCL 0.6 or 0.7: check src/collision/fcl_compat.hpp"
 #endif
@@ -65,6 +67,9 @@ class Body : public CollisionObject {
     aabb.min_ = centre - half;
     aabb.max_ = centre + half;
   }
+
+  /// The body as an upright prism at its pose, kept by its owner (kind None: not one).
+  const detail::UprightPrism* prism = nullptr;
 };
 
 }  // namespace fcl_compat
