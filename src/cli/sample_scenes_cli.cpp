@@ -23,6 +23,7 @@
 #include "placement_samplers/sampling/random.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/output/npz_writer.hpp"
+#include "placement_samplers/output/scene_arrays.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/output/scene_json.hpp"
 #include "placement_samplers/text.hpp"
@@ -352,13 +353,7 @@ int runSampleScenes(const std::vector<std::string>& args, std::ostream& out, std
       }
       NpzOptions npzOptions;
       npzOptions.physics = prepared.physics.mode;
-      prepared.sampler->forEachUniform(
-          prepared.reference, prepared.onTop,
-          [&](const UniformRandomSampler& sampler, const Reference&, bool) {
-            npzOptions.restPoses =
-                npzOptions.restPoses ||
-                sampler.params().resting == UniformSamplerParams::Resting::Stable;
-          });
+      npzOptions.restPoses = drawsRestPoses(prepared);
       npz = std::make_unique<NpzWriter>(outputPath, names, scenes, seed, npzOptions);
     }
     // The line goes to a terminal the scenes do not go to (--output, or stdout redirected).

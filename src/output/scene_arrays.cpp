@@ -5,9 +5,20 @@
 #include <limits>
 #include <stdexcept>
 
+#include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
+
+bool drawsRestPoses(const PreparedRequest& request) {
+  bool stable = false;
+  request.sampler->forEachUniform(request.reference, request.onTop,
+                                  [&](const UniformRandomSampler& sampler, const Reference&, bool) {
+                                    stable = stable || sampler.params().resting ==
+                                                           UniformSamplerParams::Resting::Stable;
+                                  });
+  return stable;
+}
 
 SceneColumns::SceneColumns(std::vector<std::string> names, PhysicsMode physics)
     : names_(std::move(names)), physics_(physics) {

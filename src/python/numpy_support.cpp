@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 static_assert(sizeof(bitgen_t) == sizeof(placement_samplers::python::BitGen),
@@ -248,12 +249,16 @@ PyObject* newFloat32Array(const float* values, std::size_t count) {
 
 PyObject* newArray(const char* dtype, const std::vector<std::int64_t>& shape, void** data) {
   int type = NPY_DOUBLE;
-  if (std::strcmp(dtype, "uint32") == 0) {
+  if (std::strcmp(dtype, "int16") == 0) {
+    type = NPY_INT16;
+  } else if (std::strcmp(dtype, "uint32") == 0) {
     type = NPY_UINT32;
   } else if (std::strcmp(dtype, "uint64") == 0) {
     type = NPY_UINT64;
   } else if (std::strcmp(dtype, "bool") == 0) {
     type = NPY_BOOL;
+  } else if (std::strcmp(dtype, "float64") != 0) {
+    throw std::invalid_argument(std::string("newArray: no numpy type for ") + dtype);
   }
   std::vector<npy_intp> dims(shape.begin(), shape.end());
   PyObject* array = PyArray_ZEROS(static_cast<int>(dims.size()), dims.data(), type, 0);

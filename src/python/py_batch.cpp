@@ -196,6 +196,9 @@ py::dict sampleScenes(py::object configGiven, std::uint64_t seed, std::uint64_t 
     add("sampled_orientation", "float64", {k, n, 4},
         reinterpret_cast<void**>(&rows.sampledOrientation));
   }
+  if (drawsRestPoses(prepared)) {  // last, as in the .npz file
+    add("rest_pose", "int16", {k, n}, reinterpret_cast<void**>(&rows.restPose));
+  }
   const SceneColumns columns(names, physics);
   {
     py::gil_scoped_release release;
@@ -223,6 +226,9 @@ py::dict sampleScenes(py::object configGiven, std::uint64_t seed, std::uint64_t 
       if (physics == PhysicsMode::Settle) {
         at.sampledPosition += cells * 3;
         at.sampledOrientation += cells * 4;
+      }
+      if (rows.restPose != nullptr) {
+        at.restPose += cells;
       }
       columns.fill(results, at);
     }

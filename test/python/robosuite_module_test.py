@@ -480,7 +480,7 @@ class Batch(unittest.TestCase):
     """sample_scenes(): the arrays of `sample_scenes --output FILE.npz`."""
 
     CONFIGS = ["config/lift.yaml", "config/pick_place.yaml", "config/default.yaml",
-               "test/data/robosuite/crowded.yaml"]
+               "test/data/robosuite/crowded.yaml", "config/resting.yaml"]
 
     def test_same_arrays_as_the_command_line_tool(self):
         if SAMPLE_SCENES is None:
@@ -503,6 +503,8 @@ class Batch(unittest.TestCase):
                                      "%s %s" % (config, key))
             if "crowded" in config:
                 self.assertFalse(expected["success"].all(), "some crowded scene fails")
+            if "resting" in config:
+                self.assertGreater(len(set(expected["rest_pose"].ravel())), 2, "poses drawn")
 
     def test_configuration_as_a_dict(self):
         import yaml

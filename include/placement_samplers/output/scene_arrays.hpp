@@ -8,6 +8,7 @@
 
 #include "placement_samplers/physics/physics_settings.hpp"
 #include "placement_samplers/sampling/placement.hpp"
+#include "placement_samplers/sampling/scene_generator.hpp"
 
 namespace placement_samplers {
 
@@ -28,6 +29,10 @@ struct SceneArrayRows {
   double* sampledOrientation = nullptr;  ///< [k, n, 4], physics settle
   std::int16_t* restPose = nullptr;      ///< [k, n], when not null (-1: as configured)
 };
+
+/// True when a sampler of @p request draws resting poses (`resting: stable`): the .npz layout
+/// then has rest_pose.
+bool drawsRestPoses(const PreparedRequest& request);
 
 /// Puts scenes into the columns of the .npz layout: one column per object name, in the order
 /// given; an object a scene did not place is NaN in position and orientation and 0 in
