@@ -88,6 +88,7 @@ void PlacementServer::advertiseLive() {
     diagnostics_->restart();
     reconfigure_->restart();
     handles_->restart();
+    action_->restart();
   });
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "ros/post_callback.hpp"
 #include "ros/thread_priority.hpp"
 
 namespace placement_samplers {
@@ -77,11 +78,30 @@ SampleAction::~SampleAction() {
 }
 
 void SampleAction::start() {
+  makeServer();
+  feedback_ = std::thread(&SampleAction::feedbackLoop, this);
+}
+
+void SampleAction::makeServer() {
+  server_.reset();  // unregisters its topics, so that the new ones register afresh
   server_ = std::make_unique<Server>(
       handle_, "sample", [this](GoalHandle h) { onGoal(h); }, [this](GoalHandle h) { onCancel(h); },
       false);
   server_->start();
-  feedback_ = std::thread(&SampleAction::feedbackLoop, this);
+}
+
+void SampleAction::restart() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const bool active = std::any_of(goals_.begin(), goals_.end(),
+                                    [](const std::shared_ptr<Goal>& g) { return !g->done; });
+    restartPending_ = active;
+    if (stopping_ || active) {
+      return;
+    }
+  }
+  // No goal is active and none can arrive meanwhile: goals arrive on this queue.
+  makeServer();
 }
 
 void SampleAction::onGoal(GoalHandle handle) {
@@ -173,6 +193,12 @@ void SampleAction::run(const std::shared_ptr<Goal>& goal) {
   }
   std::lock_guard<std::mutex> lock(mutex_);
   goal->done = true;
+  if (restartPending_ && !stopping_ &&
+      std::none_of(goals_.begin(), goals_.end(),
+                   [](const std::shared_ptr<Goal>& g) { return !g->done; })) {
+    restartPending_ = false;
+    postCallback(handle_.getCallbackQueue(), [this] { restart(); });
+  }
 }
 
 void SampleAction::sendFeedback(Goal& goal, bool last) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Master restart: the node notices, registers its services and topics again (the knobs,
-# /diagnostics and the region handles too), re-sends its last scene, and keeps answering, also
+# /diagnostics, the region handles and the ~sample action too), re-sends its last scene, and keeps answering, also
 # when the master goes away while every sampling thread is busy. SIGTERM during a batch shuts it
 # down cleanly (exit 0, services unregistered). Runs its own master on a free port; cleans up
 # after itself.
@@ -50,6 +50,16 @@ wait_service() {
   return 1
 }
 
+# A goal of the ~sample action (scripts/sample_client.py --action) reaches the node and succeeds.
+client=$(cd "$(dirname "$0")/../.." && pwd)/scripts/sample_client.py
+action_ok() {
+  local out
+  out=$(/usr/bin/python3 "$client" --action --scenes 3 --dry-run --timeout 20 2>&1) || true
+  echo "$out" | grep -q "success: True" && { echo "~sample answers $1"; return 0; }
+  echo "$out"
+  return 1
+}
+
 # Holds one sampling thread for max_request_seconds: nothing fits beside a wall over the table
 # (the exact test alone: with the radius test the node proves at once that no room is left).
 hopeless() {
@@ -80,8 +90,9 @@ frames=$(timeout 10 rostopic echo -n 1 /tf | grep -c child_frame_id || true)
 call_ok "{seed: 6}" || fail "call after restart"
 timeout 10 rostopic echo -n 1 /placement_server/markers >/dev/null || fail "no markers after restart"
 grep -q "the master is back" "$log/node.log" || fail "the node did not report the restart"
-# The knobs, /diagnostics and the region handles are registered again too (not the action).
+# The knobs, /diagnostics, the region handles and the ~sample action are registered again too.
 wait_service /placement_server/set_parameters || fail "the knobs not registered again"
+action_ok "after the restart" || fail "the ~sample action after the restart"
 timeout 10 rostopic echo -n 1 /diagnostics >/dev/null || fail "no /diagnostics after restart"
 timeout 10 rostopic echo -n 1 /placement_server/region_handles/update_full >/dev/null ||
   fail "no region handles after restart"
@@ -105,6 +116,21 @@ grep -q "the master restarted (new run_id)" "$log/node.log" || fail "a new run_i
 wait_service /placement_server/sample_placements || fail "not registered after a new run_id"
 call_ok "{seed: 7}" || fail "call after a new run_id"
 echo "a new master identity was noticed while the master stayed up"
+
+# A restart while a goal samples: ~sample is registered again once that goal has its result
+# (its handle belongs to the old registration); then new goals reach it.
+goal_log=$log/goal.log
+/usr/bin/python3 "$client" --action --scenes 300 --physics settle --dry-run --timeout 20 \
+  >"$goal_log" 2>&1 &
+goal=$!
+pids+=($goal)
+sleep 1
+kill -0 "$goal" 2>/dev/null || fail "the long goal ended before the restart: $(cat "$goal_log")"
+rosparam set /run_id "$(cat /proc/sys/kernel/random/uuid)"
+wait "$goal" || true
+# Its result arrives (all placed, or what max_request_seconds let it place).
+grep -q "^success: " "$goal_log" || fail "no result for the goal running during the restart: $(cat "$goal_log")"
+action_ok "after a restart during a goal" || fail "~sample after a restart during a goal"
 
 # SIGTERM in the middle of a batch: a clean shutdown, exit 0, nothing left at the master.
 hopeless & pids+=($!)

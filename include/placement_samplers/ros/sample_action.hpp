@@ -51,11 +51,18 @@ class SampleAction {
   /// Advertises ~sample and starts sending feedback.
   void start();
 
+  /// Registers ~sample again (a new master): now when no goal is active, else when the last
+  /// active goal has its result (its handle belongs to the registered server). Call it on the
+  /// queue of @p handle, where goals arrive.
+  void restart();
+
  private:
   using Server = actionlib::ActionServer<SampleScenesAction>;
   using GoalHandle = Server::GoalHandle;
   struct Goal;
 
+  /// A new server, the old one's registrations dropped; on the handle's queue.
+  void makeServer();
   void onGoal(GoalHandle handle);
   void onCancel(GoalHandle handle);
   void run(const std::shared_ptr<Goal>& goal);
@@ -74,6 +81,7 @@ class SampleAction {
   std::list<std::shared_ptr<Goal>> goals_;  // accepted and not yet finished, oldest first
   unsigned running_ = 0;                    // goals sampling now
   bool stopping_ = false;
+  bool restartPending_ = false;  // restart() waits for the active goals
   std::thread feedback_;
 };
 
