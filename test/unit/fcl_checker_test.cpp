@@ -634,8 +634,9 @@ TEST(FclChecker, ListAndTreeBroadphaseGiveTheSameScenes) {
   const SceneGenerator generator(build(yaml.str()));
   const PreparedRequest request = generator.prepare(SampleRequest());
   std::vector<std::vector<ObjectPlacement>> scenes[3];
-  const std::size_t limits[3] = {std::numeric_limits<std::size_t>::max(), 0,
-                                 FclChecker::kDefaultListLimit};
+  // A list, a tree, and a switch from one to the other within each scene.
+  constexpr std::size_t kSwitch = 32;
+  const std::size_t limits[3] = {std::numeric_limits<std::size_t>::max(), 0, kSwitch};
   for (int k = 0; k < 3; ++k) {
     FclChecker checker(0.0, limits[k]);
     Engine engine;
@@ -648,7 +649,7 @@ TEST(FclChecker, ListAndTreeBroadphaseGiveTheSameScenes) {
     }
   }
   for (std::size_t s = 0; s < scenes[0].size(); ++s) {
-    ASSERT_GT(scenes[0][s].size(), FclChecker::kDefaultListLimit + 5) << "scene " << s;
+    ASSERT_GT(scenes[0][s].size(), kSwitch + 5) << "scene " << s;
     for (int k = 1; k < 3; ++k) {
       ASSERT_EQ(scenes[k][s].size(), scenes[0][s].size()) << "scene " << s << ", checker " << k;
       for (std::size_t i = 0; i < scenes[0][s].size(); ++i) {

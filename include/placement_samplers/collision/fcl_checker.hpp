@@ -17,8 +17,12 @@ namespace placement_samplers {
 ///   margin - kTouchTolerance (so a resting object is then rejected: give it a z_offset).
 /// - FCL geometry is made once per ObjectModel (meshes once per process, as BVHModel<OBBRSS>,
 ///   shared by every checker and thread) and FCL objects are moved with each pose, never
-///   rebuilt per attempt. Placed entries live in a dynamic AABB tree (a broadphase manager)
-///   updated as entries are added; the candidate's box is widened by the margin.
+///   rebuilt per attempt. Placed entries are a list (a dynamic AABB tree beyond
+///   kDefaultListLimit) updated as entries are added; the candidate's box is widened by the
+///   margin.
+/// - Upright boxes and cylinders (turned about the world z axis only) are decided by an exact
+///   prism distance where it is more than 1e-5 m from the limit, so FCL's answer is known
+///   without asking it; nearer pairs and other shapes go to FCL.
 /// - Circles only skip pairs that cannot come within the margin: when both objects' radius
 ///   bounds their geometry (ObjectModel::radiusBoundsGeometry: not with an overridden smaller
 ///   radius) and both are turned about the world z axis only, from their init orientation,
@@ -33,10 +37,10 @@ class FclChecker : public CollisionChecker {
   /// Penetration depth [m] up to which shapes in contact still count as touching.
   static constexpr double kTouchTolerance = 1e-6;
 
-  /// Up to this many placed bodies the broadphase is a list checked in entry order (faster
-  /// than FCL's dynamic AABB tree for robosuite-sized scenes, docs/benchmarks.md); beyond, the
-  /// tree. Both accept and reject the same candidates.
-  static constexpr std::size_t kDefaultListLimit = 32;
+  /// Up to this many placed bodies the broadphase is a list checked in entry order, cheap
+  /// tests first (faster than FCL's dynamic AABB tree up to 200 upright objects at least,
+  /// docs/design.md); beyond, the tree. Both accept and reject the same candidates.
+  static constexpr std::size_t kDefaultListLimit = 256;
 
   /// @param margin required clearance between objects [m], finite and non-negative
   /// @param listLimit placed bodies up to which the list is used (0 = always the tree)
