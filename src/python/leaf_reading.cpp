@@ -3,6 +3,7 @@
 #include <limits>
 #include <string>
 
+#include "python/attribute_snapshot.hpp"
 #include "python/py_samplers.hpp"
 #include "python/py_values.hpp"
 
@@ -103,16 +104,25 @@ bool truth(const py::object& value) {
   return v == 1;
 }
 
-/// Object @p k as robosuite reads it; its exception kept with where it is raised.
+/// Object @p k as robosuite reads it; its exception kept with where it is raised. Its
+/// attributes come from @p snapshot while it is current (taken anew when it is not).
 void readObject(std::size_t k, py::handle object, py::handle placed, py::object& seen,
-                LeafReading& out) {
+                AttributeSnapshot& snapshot, LeafReading& out) {
   UniformSamplerParams& p = out.params;
   out.objects.emplace_back();
   ObjectReading& o = out.objects.back();
   o.object = py::reinterpret_borrow<py::object>(object);
-  PyObject* name = PyObject_GetAttr(object.ptr(), names().name);
-  if (name == nullptr) {
-    return out.pending.note(k, Stage::BeforeX);
+  const bool snapped = snapshot.current(object.ptr()) || snapshot.take(object.ptr());
+  o.snapshot = snapshot;
+  PyObject* name = nullptr;
+  if (snapped) {
+    name = snapshot.name;
+    Py_INCREF(name);
+  } else {
+    name = PyObject_GetAttr(object.ptr(), names().name);
+    if (name == nullptr) {
+      return out.pending.note(k, Stage::BeforeX);
+    }
   }
   o.name = py::reinterpret_steal<py::object>(name);
   int known = PyDict_Check(placed.ptr()) ? PyDict_Contains(placed.ptr(), name)
@@ -136,13 +146,24 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
   if (seen && PySet_Add(seen.ptr(), name) < 0) {
     throw py::error_already_set();
   }
-  PyObject* radius = PyObject_GetAttr(object.ptr(), names().horizontalRadius);
-  py::object radiusGuard = py::reinterpret_steal<py::object>(radius);
-  PyObject* bottom =
-      radius != nullptr ? PyObject_GetAttr(object.ptr(), names().bottomOffset) : nullptr;
-  py::object bottomGuard = py::reinterpret_steal<py::object>(bottom);
-  if (bottom == nullptr) {
-    return out.pending.note(k, Stage::BeforeX);
+  // A name's __eq__ may have run Python code: the snapshot holds only while current.
+  const bool plain = snapped && snapshot.current(object.ptr());
+  py::object radiusGuard;
+  py::object bottomGuard;
+  PyObject* radius = nullptr;
+  PyObject* bottom = nullptr;
+  if (plain) {
+    radius = snapshot.radius;
+    bottom = snapshot.bottom;
+  } else {
+    o.snapshot.clear();
+    radius = PyObject_GetAttr(object.ptr(), names().horizontalRadius);
+    radiusGuard = py::reinterpret_steal<py::object>(radius);
+    bottom = radius != nullptr ? PyObject_GetAttr(object.ptr(), names().bottomOffset) : nullptr;
+    bottomGuard = py::reinterpret_steal<py::object>(bottom);
+    if (bottom == nullptr) {
+      return out.pending.note(k, Stage::BeforeX);
+    }
   }
   if (!toDouble(radius, o.radius)) {
     // Used by the boundary shrink (before the x draw) and by the overlap test.
@@ -160,12 +181,18 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
     return out.pending.note(k, Stage::AfterY);
   }
   PyObject* initQuat = nullptr;
-  const int has = _PyObject_LookupAttr(object.ptr(), names().initQuat, &initQuat);
-  if (has < 0) {
-    return out.pending.note(k, Stage::AfterRotation);
+  py::object initQuatGuard;
+  // The numbers read so far may have run Python code (a __float__, a __getitem__).
+  if (plain && snapshot.current(object.ptr())) {
+    initQuat = snapshot.initQuat;
+  } else {
+    o.snapshot.clear();
+    if (_PyObject_LookupAttr(object.ptr(), names().initQuat, &initQuat) < 0) {
+      return out.pending.note(k, Stage::AfterRotation);
+    }
+    initQuatGuard = py::reinterpret_steal<py::object>(initQuat);
   }
-  if (has == 1) {
-    py::object guard = py::reinterpret_steal<py::object>(initQuat);
+  if (initQuat != nullptr) {
     py::object parts[4];
     o.hasInitQuat = true;
     if (!unpack(initQuat, 4, parts)) {
@@ -296,7 +323,10 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
   py::object seen;
   py::object objects = s.mujocoObjects;  // held: reading may replace the attribute
   auto read = [&](std::size_t k, PyObject* object) {
-    readObject(k, object, placed, seen, out);
+    if (k == s.snapshots.size()) {
+      s.snapshots.emplace_back();
+    }
+    readObject(k, object, placed, seen, s.snapshots[k], out);
     if (k == 0) {
       readParams(s, defaultReference, out);
     }
@@ -324,7 +354,7 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
     // Each object but the last is tested against by the ones after it: their tops now.
     for (std::size_t j = 0; j + 1 < out.objects.size(); ++j) {
       ObjectReading& o = out.objects[j];
-      if (!readTop(o.object.ptr(), o.top)) {
+      if (!readTop(o.object.ptr(), o.snapshot, o.top)) {
         out.pending.note(j + 1, Stage::AfterY);
         break;
       }

@@ -15,6 +15,7 @@
 
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/sampling/uniform_source.hpp"
+#include "python/attribute_snapshot.hpp"
 
 namespace placement_samplers::python {
 
@@ -56,6 +57,8 @@ struct ObjectReading {
   bool topKnown = false;
   bool hasInitQuat = false;
   std::array<double, 4> initQuat{};  ///< init_quat as given: (x, y, z, w) in quat_multiply
+  /// Its attributes as read, for reading its top later (cleared when they were not plain).
+  AttributeSnapshot snapshot;
 };
 
 /// The sampler's numbers as robosuite reads them in one sample() call.

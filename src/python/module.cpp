@@ -5,6 +5,7 @@
 
 #include "placement_samplers/errors.hpp"
 #include "python/numpy_support.hpp"
+#include "python/py_values.hpp"
 #include "python/py_batch.hpp"
 #include "python/py_samplers.hpp"
 
@@ -26,6 +27,7 @@ PYBIND11_MODULE(robosuite, m) {
   if (!initNumpy()) {
     throw py::error_already_set();
   }
+  initNames();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) {

@@ -6,10 +6,12 @@
 
 #include <pybind11/pybind11.h>
 
+#include <deque>
 #include <memory>
 #include <vector>
 
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "python/attribute_snapshot.hpp"
 #include "python/caller_rng.hpp"
 
 namespace placement_samplers::python {
@@ -50,6 +52,9 @@ class PyUniformSampler {
   py::object rng;
 
   CoreCache core;
+  /// The attributes of mujoco_objects[k] as last read (attribute_snapshot.hpp); a deque: a
+  /// nested call may add to it while a reading holds one.
+  std::deque<AttributeSnapshot> snapshots;
   CallerRng rngInfo;  ///< what `rng` is, while it stays the same object
   CallSlot slot;
 };

@@ -12,12 +12,15 @@ PyObject* minusOne() {
 
 }  // namespace
 
-const Names& names() {
-  static const Names names;
-  return names;
+const Names* gNames = nullptr;
+
+void initNames() {
+  if (gNames == nullptr) {
+    gNames = new Names();  // kept for the life of the process, as the interned strings
+  }
 }
 
-bool toDouble(PyObject* value, double& out) {
+bool toDoubleSlow(PyObject* value, double& out) {
   out = PyFloat_AsDouble(value);
   return !(out == -1.0 && PyErr_Occurred());
 }
@@ -53,14 +56,10 @@ bool itemAsDouble(PyObject* sequence, Py_ssize_t index, double& out) {
 }
 
 /// Python's `a, b, ... = value` into @p out (new references), with Python's messages.
-bool unpack(PyObject* value, std::size_t count, py::object* out) {
+bool unpackSlow(PyObject* value, std::size_t count, py::object* out) {
   if ((PyTuple_CheckExact(value) || PyList_CheckExact(value)) &&
       static_cast<std::size_t>(PySequence_Fast_GET_SIZE(value)) == count) {
-    for (std::size_t i = 0; i < count; ++i) {
-      out[i] = py::reinterpret_borrow<py::object>(
-          PySequence_Fast_GET_ITEM(value, static_cast<Py_ssize_t>(i)));
-    }
-    return true;
+    return unpack(value, count, out);
   }
   PyObject* iterator = PyObject_GetIter(value);
   if (iterator == nullptr) {

@@ -59,7 +59,7 @@ void SampleCall::prepareTests(LeafReading& reading) {
     return;
   }
   for (Placed& p : placedHere_) {
-    if (p.owner && !readTop(p.owner.ptr(), p.top)) {
+    if (p.owner && !readTop(p.owner.ptr(), p.snapshot, p.top)) {
       return reading.pending.note(0, Stage::AfterY);  // where the first test reads it
     }
     p.owner = py::object();
@@ -67,7 +67,7 @@ void SampleCall::prepareTests(LeafReading& reading) {
   if (!fixturesRead_) {
     // The values there before this call's own placements: the first fixtures_ of the dict.
     auto add = [&](py::handle value) {
-      Placed entry{Eigen::Vector3d::Zero(), 0.0, 0.0, py::object()};
+      Placed entry{Eigen::Vector3d::Zero(), 0.0, 0.0, py::object(), AttributeSnapshot()};
       readEntry(value, entry.position, entry.radius, entry.top);
       fixtureEntries_.push_back(entry);
     };
@@ -123,7 +123,7 @@ void SampleCall::recordPlacements(const LeafReading& reading, std::size_t before
   for (std::size_t i = 0; i < reading.objects.size(); ++i) {
     const ObjectReading& o = reading.objects[i];
     placedHere_.push_back(Placed{placements[before + i].position, o.radius, o.top,
-                                 o.topKnown ? py::object() : o.object});
+                                 o.topKnown ? py::object() : o.object, o.snapshot});
     // Its entry in the context has no top yet.
     stale_ = stale_ || !o.topKnown;
   }

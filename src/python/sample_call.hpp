@@ -58,8 +58,9 @@ class SampleCall {
   struct Placed {
     Eigen::Vector3d position;
     double radius;
-    double top;        ///< top_offset[-1] once read
-    py::object owner;  ///< the object whose top_offset is still to be read, else null
+    double top;                  ///< top_offset[-1] once read
+    py::object owner;            ///< the object whose top_offset is still to be read, else null
+    AttributeSnapshot snapshot;  ///< owner's attributes as read
   };
 
   /// Makes the context's entries the fixtures (the dict's first fixtures_ values) and placed_.

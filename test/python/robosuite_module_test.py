@@ -175,6 +175,49 @@ class AgainstReference(unittest.TestCase):
         print("stacked: %d calls with fixtures, %d raised, same results and Generator states"
               % (CALLS, failed))
 
+    def test_attributes_changed_between_calls(self):
+        # robosuite reads the objects' attributes at every call: a change between calls (of an
+        # instance attribute, of an array in place, of the class, of the object's class or
+        # dict) shows in the next call.
+        comparison = Comparison(SETUPS["pick_place"], self.theirs, seed=11)
+
+        class Fresh(robosuite_setups.PlainObject):
+            pass
+
+        class Other(robosuite_setups.PlainObject):
+            bottom_offset = property(lambda self: np.array([0.0, 0.0, -0.01]))
+            top_offset = np.array([0.0, 0.0, 0.06])
+
+        objects = list(comparison.mine.samplers["CollisionObjectSampler"].mujoco_objects)
+        for obj in objects:
+            obj.__class__ = Fresh
+        milk, bread, cereal, can = objects
+        steps = [
+            ("radius", lambda: setattr(milk, "horizontal_radius", 0.09)),
+            ("radius again", lambda: setattr(milk, "horizontal_radius", 0.025)),
+            ("bottom changed in place", lambda: bread.bottom_offset.__setitem__(2, -0.3)),
+            ("top", lambda: setattr(cereal, "top_offset", np.array([0.0, 0.0, 0.4]))),
+            ("top changed in place", lambda: cereal.top_offset.__setitem__(2, -0.2)),
+            ("init_quat added", lambda: setattr(can, "init_quat", [0.0, 0.0, 0.38, 0.92])),
+            ("init_quat removed", lambda: delattr(can, "init_quat")),
+            ("a property of the class", lambda: setattr(Fresh, "horizontal_radius",
+                                                        property(lambda self: 0.1))),
+            ("the property removed", lambda: delattr(Fresh, "horizontal_radius")),
+            ("a class attribute where the instance has none",
+             lambda: (delattr(bread, "top_offset"),
+                      setattr(Fresh, "top_offset", np.array([0.0, 0.0, 0.35])))),
+            ("the class attribute changed", lambda: setattr(Fresh, "top_offset",
+                                                            np.array([0.0, 0.0, -0.1]))),
+            ("another class", lambda: setattr(bread, "__class__", Other)),
+            ("another dict", lambda: setattr(cereal, "__dict__",
+                                             dict(cereal.__dict__, horizontal_radius=0.08))),
+            ("another name", lambda: setattr(can, "name", "Tin")),
+        ]
+        for label, change in steps:
+            change()
+            differences, _ = comparison.run(30)
+            self.assertEqual(differences, [], label)
+
 
 class AgainstRobosuite(AgainstReference):
     """The module against robosuite's own placement_samplers.py."""
