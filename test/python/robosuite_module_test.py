@@ -26,6 +26,7 @@ import sys
 import tempfile
 import types
 import unittest
+import weakref
 
 import numpy as np
 
@@ -217,6 +218,33 @@ class AgainstReference(unittest.TestCase):
             change()
             differences, _ = comparison.run(30)
             self.assertEqual(differences, [], label)
+
+    def test_each_result_has_arrays_of_its_own(self):
+        # Quaternions kept keep their values; what a caller does to one it dropped (its values,
+        # shape, flags or dtype, a weak reference to it) shows in no later result.
+        comparison = Comparison(SETUPS["pick_place"], self.theirs, seed=5)
+        kept, weak = [], []
+        changes = [lambda q: q.__setitem__(slice(None), 7.0),
+                   lambda q: setattr(q, "shape", (2, 2)),
+                   lambda q: q.setflags(write=False),
+                   lambda q: setattr(q, "dtype", np.int64),
+                   lambda q: weak.append(weakref.ref(q))]
+        for call in range(400):
+            mine, theirs = outcome(comparison.mine, {}), outcome(comparison.theirs, {})
+            self.assertIsNone(describe_difference(mine, theirs), "call %d" % call)
+            for _, quat, _ in mine[0].values():
+                self.assertEqual((quat.shape, quat.flags.writeable, quat.flags.owndata,
+                                  quat.base, weakref.getweakrefcount(quat)),
+                                 ((4,), True, True, None, 0), "call %d" % call)
+            if call % 4 == 0:
+                kept.append((mine, theirs))
+            elif call % 4 == 1:
+                for i, (_, quat, _) in enumerate(mine[0].values()):
+                    changes[(call + i) % len(changes)](quat)
+        for mine, theirs in kept:
+            self.assertIsNone(describe_difference(mine, theirs))
+        quats = [id(quat) for mine, _ in kept for _, quat, _ in mine[0].values()]
+        self.assertEqual(len(set(quats)), len(quats))
 
 
 class AgainstRobosuite(AgainstReference):
