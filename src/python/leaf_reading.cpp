@@ -104,6 +104,36 @@ bool truth(const py::object& value) {
   return v == 1;
 }
 
+/// Whether @p name equals one of the names of the objects before @p k, as a set of them tells:
+/// str names compared as they are, any other in @p seen (made when first needed; the caller
+/// adds each name that passes). @return 1, 0, or -1 with a Python error set
+int amongEarlier(const LeafReading& out, std::size_t k, PyObject* name, py::object& seen) {
+  if (!seen && PyUnicode_CheckExact(name)) {
+    std::size_t j = 0;
+    for (; j < k && PyUnicode_CheckExact(out.objects[j].name.ptr()); ++j) {
+      PyObject* other = out.objects[j].name.ptr();
+      if (other == name || PyUnicode_Compare(other, name) == 0) {
+        return 1;
+      }
+    }
+    if (j == k) {
+      return 0;
+    }
+  }
+  if (!seen) {
+    seen = py::reinterpret_steal<py::object>(PySet_New(nullptr));
+    for (std::size_t j = 0; seen && j < k; ++j) {
+      if (PySet_Add(seen.ptr(), out.objects[j].name.ptr()) < 0) {
+        return -1;
+      }
+    }
+    if (!seen) {
+      return -1;
+    }
+  }
+  return PySet_Contains(seen.ptr(), name);
+}
+
 /// Object @p k as robosuite reads it; its exception kept with where it is raised. Its
 /// attributes come from @p snapshot while it is current (taken anew when it is not).
 void readObject(std::size_t k, py::handle object, py::handle placed, py::object& seen,
@@ -129,13 +159,7 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
                                          : PySequence_Contains(placed.ptr(), name);
   if (known == 0 && k > 0) {
     // The objects before it in this sampler are placed by now: their names count too.
-    if (!seen) {
-      seen = py::reinterpret_steal<py::object>(PySet_New(nullptr));
-      if (!seen || PySet_Add(seen.ptr(), out.objects.front().name.ptr()) < 0) {
-        throw py::error_already_set();
-      }
-    }
-    known = PySet_Contains(seen.ptr(), name);
+    known = amongEarlier(out, k, name, seen);
   }
   if (known != 0) {
     if (known == 1) {

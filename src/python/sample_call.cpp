@@ -17,7 +17,11 @@ SampleCall::SampleCall() : context_(unused_, checker_) {}
 
 void SampleCall::start(py::handle fixtures) {
   if (fixtures.is_none()) {
-    placed_ = py::dict();
+    // Room for as many as the last call placed: the dict does not grow entry by entry.
+    placed_ = py::reinterpret_steal<py::object>(_PyDict_NewPresized(lastSize_));
+    if (!placed_) {
+      throw py::error_already_set();
+    }
   } else if (PyDict_CheckExact(fixtures.ptr())) {
     placed_ = py::reinterpret_steal<py::object>(PyDict_Copy(fixtures.ptr()));
     if (!placed_) {
@@ -34,6 +38,9 @@ void SampleCall::start(py::handle fixtures) {
 }
 
 void SampleCall::end() {
+  if (placed_ && PyDict_Check(placed_.ptr())) {
+    lastSize_ = PyDict_GET_SIZE(placed_.ptr());
+  }
   placed_ = py::object();
   for (Placed& p : placedHere_) {
     p.owner = py::object();

@@ -67,7 +67,8 @@ class SampleCall {
   void rebuild();
 
   py::object placed_;
-  Engine unused_;  // the samplers draw from the caller's rng (UniformSource)
+  Py_ssize_t lastSize_ = 0;  ///< how many entries the last call's dict had
+  Engine unused_;            // the samplers draw from the caller's rng (UniformSource)
   RadiusChecker checker_;
   SampleContext context_;
   std::size_t fixtures_ = 0;  ///< placed()'s first values that are not in placedHere_

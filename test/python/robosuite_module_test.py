@@ -534,6 +534,75 @@ class Behaviour(unittest.TestCase):
                                  "later samplers see the other sampler's placement as it "
                                  "returned it")
 
+    def test_samplers_changed_during_a_call(self):
+        # The composite walks its samplers and sample_args as zip() over their values()
+        # iterators: what a sampler changes in them during the call shows, or raises, alike.
+        def replace(dicts, key, value):
+            return lambda c, api, rng, objects: getattr(c, dicts).__setitem__(key, value(
+                api, rng, objects))
+
+        def later(api, rng, objects):
+            return api.UniformRandomSampler("Later", [objects[2]], [-0.2, 0.2], [-0.2, 0.2],
+                                            reference_pos=(0, 0, 0.8), rng=rng)
+
+        actions = {
+            "nothing": lambda c, api, rng, objects: None,
+            "a sampler moved to the end": lambda c, *_: c.samplers.move_to_end("A"),
+            "sample_args moved to the end": lambda c, *_: c.sample_args.move_to_end("A"),
+            "a sampler added": replace("samplers", "X", later),
+            "a sampler replaced": replace("samplers", "B", later),
+            "sample_args replaced": replace("sample_args", "B", lambda *_: {"on_top": False}),
+            "a sampler removed": lambda c, *_: c.samplers.pop("B"),
+            "sample_args removed": lambda c, *_: c.sample_args.pop("A"),
+            "a sampler removed behind the OrderedDict's back":
+                lambda c, *_: dict.pop(c.samplers, "B"),
+            "cleared and refilled": lambda c, *_: c.sample_args.update(
+                (c.sample_args.clear(), dict(A=None, M=None, B=None))[1]),
+        }
+
+        class Meddler:
+            """A sampler that changes its composite when it samples."""
+
+            def __init__(self, composite, action, api, rng, objects):
+                self.name, self.mujoco_objects = "M", []
+                self.call = lambda: action(composite, api, rng, objects)
+
+            def sample(self, fixtures=None, reference=None, on_top=True):
+                self.call()
+                return {}
+
+        def build(api, rng, objects, action, mapping=None):
+            composite = api.SequentialCompositeSampler("C")
+            composite.append_sampler(api.UniformRandomSampler(
+                "A", [objects[0]], [-0.1, 0.1], [-0.1, 0.1], reference_pos=(0, 0, 0.8), rng=rng))
+            composite.append_sampler(Meddler(composite, action, api, rng, objects))
+            composite.append_sampler(api.UniformRandomSampler(
+                "B", [objects[1]], [-0.1, 0.1], [-0.1, 0.1], reference_pos=(0, 0, 0.8), rng=rng))
+            if mapping is not None:
+                mapping(composite)
+            return composite
+
+        def values_of_its_own(composite):
+            samplers = list(composite.samplers.values())
+            composite.samplers.values = lambda: reversed(samplers)
+
+        cases = [(label, action, None) for label, action in actions.items()]
+        cases += [("plain dicts", actions["nothing"], lambda c: (
+            setattr(c, "samplers", dict(c.samplers)),
+            setattr(c, "sample_args", dict(c.sample_args)))),
+                  ("an OrderedDict with values() of its own", actions["nothing"],
+                   values_of_its_own)]
+        self.assertTrue(ours._ordered_dict_walks())
+        for theirs in [REFERENCE] + ([self.robosuite] if self.robosuite is not None else []):
+            for label, action, mapping in cases:
+                objects = [plain("a"), plain("b"), plain("later")]
+                rng, their_rng = np.random.default_rng(6), np.random.default_rng(6)
+                mine = outcome(build(ours, rng, objects, action, mapping), {})
+                other = outcome(build(theirs, their_rng, objects, action, mapping), {})
+                self.assertIsNone(describe_difference(mine, other), label)
+                self.assertTrue(same_state(rng.bit_generator.state,
+                                           their_rng.bit_generator.state), label)
+
     def test_randomization_error_is_robosuites_when_robosuite_came_first(self):
         self.assertIs(ours.RandomizationError, RandomizationError)
         code = ("import placement_samplers.robosuite as m; "
