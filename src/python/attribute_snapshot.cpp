@@ -4,13 +4,6 @@
 
 namespace placement_samplers::python {
 
-// The dict and class version numbers are CPython's up to 3.11 (3.12 deprecates the dict's).
-#if PY_VERSION_HEX < 0x030C0000
-#define PLACEMENT_SAMPLERS_SNAPSHOTS 1
-#else
-#define PLACEMENT_SAMPLERS_SNAPSHOTS 0
-#endif
-
 namespace {
 
 #if PLACEMENT_SAMPLERS_SNAPSHOTS
@@ -34,22 +27,6 @@ bool plainAttribute(PyTypeObject* type, PyObject* dict, PyObject* name, PyObject
 #endif
 
 }  // namespace
-
-bool AttributeSnapshot::current(PyObject* o) const {
-#if PLACEMENT_SAMPLERS_SNAPSHOTS
-  if (o != object || Py_TYPE(o) != type || !PyType_HasFeature(type, Py_TPFLAGS_VALID_VERSION_TAG) ||
-      type->tp_version_tag != typeVersion) {
-    return false;
-  }
-  // Both compared first: a dict at the address of a freed one has another version.
-  PyObject** dictPointer = _PyObject_GetDictPtr(o);
-  return dictPointer != nullptr && *dictPointer == dict &&
-         reinterpret_cast<PyDictObject*>(dict)->ma_version_tag == dictVersion;
-#else
-  (void)o;
-  return false;
-#endif
-}
 
 bool AttributeSnapshot::take(PyObject* o) {
   clear();
@@ -80,6 +57,7 @@ bool AttributeSnapshot::take(PyObject* o) {
   type = t;
   typeVersion = t->tp_version_tag;
   dict = d;
+  dictSlot = dictPointer;  // the object keeps its dict there from now on
   dictVersion = reinterpret_cast<PyDictObject*>(d)->ma_version_tag;
   object = o;
   return true;

@@ -15,6 +15,13 @@
 
 namespace placement_samplers::python {
 
+// The dict and class version numbers are CPython's up to 3.11 (3.12 deprecates the dict's).
+#if PY_VERSION_HEX < 0x030C0000
+#define PLACEMENT_SAMPLERS_SNAPSHOTS 1
+#else
+#define PLACEMENT_SAMPLERS_SNAPSHOTS 0
+#endif
+
 /// What getattr gives for an object's five attributes, valid while current() holds. Every
 /// pointer is borrowed: current() compares them with the live object's before any is used,
 /// and while it holds, the object's dict and class still hold the values.
@@ -23,6 +30,7 @@ struct AttributeSnapshot {
   PyTypeObject* type = nullptr;
   unsigned int typeVersion = 0;
   PyObject* dict = nullptr;
+  PyObject** dictSlot = nullptr;  ///< where the object keeps its dict
   std::uint64_t dictVersion = 0;
   PyObject* name = nullptr;
   PyObject* radius = nullptr;
@@ -32,7 +40,19 @@ struct AttributeSnapshot {
 
   /// True when @p object is the snapshot's and neither its dict nor its class has changed
   /// since. Runs no Python code.
-  bool current(PyObject* object) const;
+  bool current(PyObject* o) const {
+#if PLACEMENT_SAMPLERS_SNAPSHOTS
+    // The object first: the dict slot is in it. Its dict after: a dict at the address of a
+    // freed one has another version.
+    return o == object && Py_TYPE(o) == type &&
+           PyType_HasFeature(type, Py_TPFLAGS_VALID_VERSION_TAG) &&
+           type->tp_version_tag == typeVersion && *dictSlot == dict &&
+           reinterpret_cast<PyDictObject*>(dict)->ma_version_tag == dictVersion;
+#else
+    (void)o;
+    return false;
+#endif
+  }
   /// Takes a snapshot of @p object's attributes; false (and no Python error) when they are
   /// not all plain values that getattr reads without running Python code (a property, a
   /// __getattr__, slots, a missing name, radius or bottom offset, a Python older or newer

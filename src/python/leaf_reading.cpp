@@ -1,5 +1,6 @@
 #include "python/leaf_reading.hpp"
 
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -104,6 +105,18 @@ bool truth(const py::object& value) {
   return v == 1;
 }
 
+/// Two exact str objects equal (their text; as == compares them).
+bool sameText(PyObject* a, PyObject* b) {
+  if (!PyUnicode_IS_READY(a) || !PyUnicode_IS_READY(b)) {
+    return PyUnicode_Compare(a, b) == 0;  // a legacy string: its text made first
+  }
+  const Py_ssize_t length = PyUnicode_GET_LENGTH(a);
+  const int kind = PyUnicode_KIND(a);
+  return length == PyUnicode_GET_LENGTH(b) && kind == PyUnicode_KIND(b) &&
+         std::memcmp(PyUnicode_DATA(a), PyUnicode_DATA(b),
+                     static_cast<std::size_t>(length) * static_cast<std::size_t>(kind)) == 0;
+}
+
 /// Whether @p name equals one of the names of the objects before @p k, as a set of them tells:
 /// str names compared as they are, any other in @p seen (made when first needed; the caller
 /// adds each name that passes). @return 1, 0, or -1 with a Python error set
@@ -112,7 +125,7 @@ int amongEarlier(const LeafReading& out, std::size_t k, PyObject* name, py::obje
     std::size_t j = 0;
     for (; j < k && PyUnicode_CheckExact(out.objects[j].name.ptr()); ++j) {
       PyObject* other = out.objects[j].name.ptr();
-      if (other == name || PyUnicode_Compare(other, name) == 0) {
+      if (other == name || sameText(other, name)) {
         return 1;
       }
     }
@@ -389,13 +402,26 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
 
 void cacheKey(const LeafReading& r, std::vector<double>& key) {
   const UniformSamplerParams& p = r.params;
-  key.assign({p.xRange[0], p.xRange[1], p.yRange[0], p.yRange[1],
-              static_cast<double>(p.rotation.kind), p.rotation.low, p.rotation.high,
-              static_cast<double>(p.rotationAxis), p.ensureObjectBoundaryInRange ? 1.0 : 0.0,
-              p.ensureValidPlacement ? 1.0 : 0.0, p.zOffset,
-              static_cast<double>(r.objects.size())});
-  for (const ObjectReading& o : r.objects) {
-    key.insert(key.end(), {o.radius, o.bottom, o.top});
+  const std::size_t n = r.objects.size();
+  key.resize(12 + 3 * n);
+  double* k = key.data();
+  k[0] = p.xRange[0];
+  k[1] = p.xRange[1];
+  k[2] = p.yRange[0];
+  k[3] = p.yRange[1];
+  k[4] = static_cast<double>(p.rotation.kind);
+  k[5] = p.rotation.low;
+  k[6] = p.rotation.high;
+  k[7] = static_cast<double>(p.rotationAxis);
+  k[8] = p.ensureObjectBoundaryInRange ? 1.0 : 0.0;
+  k[9] = p.ensureValidPlacement ? 1.0 : 0.0;
+  k[10] = p.zOffset;
+  k[11] = static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ObjectReading& o = r.objects[i];
+    k[12 + 3 * i] = o.radius;
+    k[13 + 3 * i] = o.bottom;
+    k[14 + 3 * i] = o.top;
   }
 }
 

@@ -14,9 +14,15 @@ PyObject* minusOne() {
 
 const Names* gNames = nullptr;
 
+PyTypeObject* gFloat64Type = nullptr;
+
 void initNames() {
   if (gNames == nullptr) {
     gNames = new Names();  // kept for the life of the process, as the interned strings
+  }
+  if (gFloat64Type == nullptr) {
+    py::object type = py::module_::import("numpy").attr("float64");
+    gFloat64Type = reinterpret_cast<PyTypeObject*>(type.release().ptr());
   }
 }
 

@@ -22,10 +22,13 @@ struct Names {
   PyObject* axes[3] = {PyUnicode_InternFromString("x"), PyUnicode_InternFromString("y"),
                        PyUnicode_InternFromString("z")};
 };
+/// numpy.float64 (set by initNames()).
+extern PyTypeObject* gFloat64Type;
+
 /// The names, made at import (initNames()).
 extern const Names* gNames;
 inline const Names& names() { return *gNames; }
-/// Makes names(); call once at import, with the GIL.
+/// Makes names() and finds numpy.float64; call once at import, with the GIL.
 void initNames();
 
 /// toDouble() for what is not a float.
@@ -34,7 +37,8 @@ bool toDoubleSlow(PyObject* value, double& out);
 /// float(@p value) as numpy reads a scalar (PyFloat_AsDouble: a float, numpy's float64
 /// among them, is its stored value). @return false with a Python error set
 inline bool toDouble(PyObject* value, double& out) {
-  if (PyFloat_Check(value)) {
+  // numpy's float64 is a float: named first, it skips the search of its bases.
+  if (Py_IS_TYPE(value, &PyFloat_Type) || Py_TYPE(value) == gFloat64Type || PyFloat_Check(value)) {
     out = PyFloat_AS_DOUBLE(value);
     return true;
   }
