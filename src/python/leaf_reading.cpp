@@ -5,6 +5,7 @@
 #include <string>
 
 #include "python/attribute_snapshot.hpp"
+#include "python/numpy_support.hpp"
 #include "python/py_samplers.hpp"
 #include "python/py_values.hpp"
 
@@ -251,14 +252,17 @@ void readParams(PyUniformSampler& s, bool defaultReference, LeafReading& out) {
       !toDouble(pair[1].ptr(), p.xRange[1])) {
     out.pending.note(0, Stage::BeforeX);
   }
-  if (defaultReference && !itemAsDouble(s.referencePos.ptr(), 0, out.base[0])) {
+  // A float64 array of three or more, read at once (reading it runs no Python code).
+  const bool referenceRead =
+      defaultReference && float64ArrayItems(s.referencePos.ptr(), 3, out.base.data());
+  if (defaultReference && !referenceRead && !itemAsDouble(s.referencePos.ptr(), 0, out.base[0])) {
     out.pending.note(0, Stage::BeforeY);
   }
   if (!unpack(s.yRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.yRange[0]) ||
       !toDouble(pair[1].ptr(), p.yRange[1])) {
     out.pending.note(0, Stage::BeforeY);
   }
-  for (Py_ssize_t i = 1; i < 3 && defaultReference; ++i) {
+  for (Py_ssize_t i = 1; i < 3 && defaultReference && !referenceRead; ++i) {
     if (!itemAsDouble(s.referencePos.ptr(), i, out.base[i])) {
       out.pending.note(0, Stage::AfterY);
     }

@@ -185,22 +185,29 @@ bool initNumpy() {
   return true;
 }
 
-bool numpyCosSin(double x, double& cosine, double& sine) {
-  // The last angle's values: fixed rotations ask for the same one again and again.
-  static bool haveLast = false;
-  static double lastX = 0.0;
-  static double lastCos = 0.0;
-  static double lastSin = 0.0;
-  if (haveLast && sameBits(x, lastX)) {
-    cosine = lastCos;
-    sine = lastSin;
-    return true;
+bool numpyCosSin(double x, double& cosine, double& sine, bool fixed) {
+  // The last fixed angle's values and the last angle's: fixed rotations ask for the same one
+  // again and again, also when drawn rotations come between.
+  struct Known {
+    bool valid = false;
+    double x = 0.0;
+    double cosine = 0.0;
+    double sine = 0.0;
+  };
+  static Known lastFixed;
+  static Known last;
+  for (const Known* k : {&lastFixed, &last}) {
+    if (k->valid && sameBits(x, k->x)) {
+      cosine = k->cosine;
+      sine = k->sine;
+      return true;
+    }
   }
   if (gLoopsChecked && callLoop(gCosLoop, x, cosine) && callLoop(gSinLoop, x, sine)) {
-    haveLast = true;
-    lastX = x;
-    lastCos = cosine;
-    lastSin = sine;
+    last = Known{true, x, cosine, sine};
+    if (fixed) {
+      lastFixed = last;
+    }
     return true;
   }
   PyErr_Clear();
@@ -224,6 +231,23 @@ bool float64ArrayItem(PyObject* value, Py_ssize_t index, double& out) {
     return false;
   }
   std::memcpy(&out, PyArray_BYTES(array) + i * PyArray_STRIDE(array, 0), sizeof(double));
+  return true;
+}
+
+bool float64ArrayItems(PyObject* value, std::size_t count, double* out) {
+  if (!PyArray_CheckExact(value)) {
+    return false;
+  }
+  auto* array = reinterpret_cast<PyArrayObject*>(value);
+  if (PyArray_NDIM(array) != 1 || PyArray_TYPE(array) != NPY_DOUBLE ||
+      !PyArray_ISNOTSWAPPED(array) || PyArray_DIM(array, 0) < static_cast<npy_intp>(count)) {
+    return false;
+  }
+  const char* data = PyArray_BYTES(array);
+  const npy_intp stride = PyArray_STRIDE(array, 0);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::memcpy(&out[i], data + static_cast<npy_intp>(i) * stride, sizeof(double));
+  }
   return true;
 }
 

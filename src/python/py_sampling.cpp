@@ -98,7 +98,8 @@ py::object quaternion(const LeafReading& r, const ObjectReading& o, double angle
       }
     }
   } else {
-    if (!numpyCosSin(angle / 2.0, q[0], q[1 + r.axis])) {
+    if (!numpyCosSin(angle / 2.0, q[0], q[1 + r.axis],
+                     r.params.rotation.kind == RotationSpec::Kind::Fixed)) {
       throw py::error_already_set();
     }
     if (!o.hasInitQuat) {
