@@ -43,6 +43,9 @@ class CallerRng {
   py::object acquire_;  ///< the bit generator's lock, held while drawing (as numpy does)
   py::object release_;
   py::object locked_;
+  /// locked_'s C function and its lock, called directly (a builtin method without arguments).
+  PyCFunction lockedFunction_ = nullptr;
+  PyObject* lockedSelf_ = nullptr;
 };
 
 /// Draws from a CallerRng for one sampler run: numpy's Generator.uniform(low, high) bit for

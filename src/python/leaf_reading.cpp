@@ -169,8 +169,16 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
     }
   }
   o.name = py::reinterpret_steal<py::object>(name);
-  int known = PyDict_Check(placed.ptr()) ? PyDict_Contains(placed.ptr(), name)
-                                         : PySequence_Contains(placed.ptr(), name);
+  int known = 0;
+  if (PyDict_Check(placed.ptr())) {
+    // A str's hash is kept in it: looked up with it, as PyDict_Contains would.
+    const Py_hash_t hash =
+        PyUnicode_CheckExact(name) ? reinterpret_cast<PyASCIIObject*>(name)->hash : -1;
+    known = hash != -1 ? _PyDict_Contains_KnownHash(placed.ptr(), name, hash)
+                       : PyDict_Contains(placed.ptr(), name);
+  } else {
+    known = PySequence_Contains(placed.ptr(), name);
+  }
   if (known == 0 && k > 0) {
     // The objects before it in this sampler are placed by now: their names count too.
     known = amongEarlier(out, k, name, seen);

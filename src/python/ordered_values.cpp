@@ -152,12 +152,13 @@ py::object OrderedValues::next() {
   if (next != nullptr) {
     current_ = py::reinterpret_borrow<py::object>(next->key);
   }
-  PyObject* value = PyDict_GetItem(dict_.ptr(), key.ptr());  // borrowed, as the iterator's
+  // The iterator's PyDict_GetItem: an error of the lookup (a key's __eq__) is dropped and the
+  // key is missing. Without it, no error needs keeping aside.
+  PyObject* value = PyDict_GetItemWithError(dict_.ptr(), key.ptr());  // borrowed
   if (value == nullptr) {
+    PyErr_Clear();
     dict_ = py::object();
-    if (!PyErr_Occurred()) {
-      PyErr_SetObject(PyExc_KeyError, key.ptr());
-    }
+    PyErr_SetObject(PyExc_KeyError, key.ptr());
     throw py::error_already_set();
   }
   return py::reinterpret_borrow<py::object>(value);
