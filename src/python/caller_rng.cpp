@@ -124,7 +124,7 @@ void RngDraws::lock() {
   locked_ = true;
 }
 
-double RngDraws::uniform(double low, double high) {
+double RngDraws::uniformChecked(double low, double high) {
   if (rng_.kind_ == CallerRng::Kind::Python) {
     py::object value = rng_.rng_.attr("uniform")(py::arg("high") = high, py::arg("low") = low);
     const double v = PyFloat_AsDouble(value.ptr());

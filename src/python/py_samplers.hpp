@@ -23,7 +23,8 @@ class SampleCall;
 /// The core sampler built from one reading of a Python sampler's attributes, kept while they
 /// read the same (py_sampling.cpp).
 struct CoreCache {
-  std::vector<double> key;  ///< the numbers it was built from, bit for bit
+  std::vector<double> key;      ///< the numbers it was built from, bit for bit
+  std::vector<double> reading;  ///< this call's numbers (kept: no allocation per call)
   std::shared_ptr<UniformRandomSampler> sampler;
 };
 

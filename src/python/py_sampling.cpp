@@ -167,14 +167,14 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
   if (r.pending.error) {
     core = buildCore(r, r.pending.object + 1);
   } else {
-    std::vector<double>& key = call.key();
+    std::vector<double>& key = self.core.reading;
     cacheKey(r, key);
     const bool same =
         self.core.sampler && self.core.key.size() == key.size() &&
         std::memcmp(key.data(), self.core.key.data(), key.size() * sizeof(double)) == 0;
     if (!same) {
       self.core.sampler = buildCore(r, r.objects.size());
-      self.core.key = key;
+      self.core.key.swap(key);
     }
     core = self.core.sampler;
   }

@@ -46,8 +46,6 @@ class SampleCall {
   SampleContext& context() { return context_; }
   /// The reading of the sampler being run (reused between runs).
   LeafReading& reading() { return reading_; }
-  /// Room for a CoreCache key.
-  std::vector<double>& key() { return key_; }
   /// The rotation angle of each object of the current run, in order.
   std::vector<double>& angles() { return angles_; }
   /// Keeps @p sampler alive until end(): the context points into its objects.
@@ -79,7 +77,6 @@ class SampleCall {
   std::deque<ObjectModel> models_;  ///< the rebuilt entries' objects (stable addresses)
   LeafReading reading_;
   std::vector<double> angles_;
-  std::vector<double> key_;
   std::vector<std::shared_ptr<UniformRandomSampler>> kept_;
 };
 
