@@ -360,7 +360,13 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
   out.base = Eigen::Vector3d::Zero();
   out.axis = 2;
   UniformSamplerParams& p = out.params;
-  p = UniformSamplerParams();
+  // What readParams() and readObject() read; every other parameter keeps its default (the
+  // reading is made once and reused: making the whole set anew costs more than a small run).
+  p.xRange = Eigen::Vector2d::Zero();
+  p.yRange = Eigen::Vector2d::Zero();
+  p.rotation = RotationSpec();
+  p.rotationAxis = 2;
+  p.zOffset = 0.0;
   p.checkInputs = false;
   p.maxAttempts = 5000;  // robosuite's range(5000)
   const bool defaultReference = reference.is_none();

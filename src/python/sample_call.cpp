@@ -129,8 +129,14 @@ void SampleCall::recordPlacements(const LeafReading& reading, std::size_t before
   const std::vector<ObjectPlacement>& placements = context_.placements();
   for (std::size_t i = 0; i < reading.objects.size(); ++i) {
     const ObjectReading& o = reading.objects[i];
-    placedHere_.push_back(Placed{placements[before + i].position, o.radius, o.top,
-                                 o.topKnown ? py::object() : o.object, o.snapshot});
+    Placed& placed = placedHere_.emplace_back();
+    placed.position = placements[before + i].position;
+    placed.radius = o.radius;
+    placed.top = o.top;
+    if (!o.topKnown) {
+      placed.owner = o.object;
+      placed.snapshot = o.snapshot;
+    }
     // Its entry in the context has no top yet.
     stale_ = stale_ || !o.topKnown;
   }

@@ -54,9 +54,9 @@ class SampleCall {
  private:
   /// An entry placed by the library's samplers in this call.
   struct Placed {
-    Eigen::Vector3d position;
-    double radius;
-    double top;                  ///< top_offset[-1] once read
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    double radius = 0.0;
+    double top = 0.0;            ///< top_offset[-1] once read
     py::object owner;            ///< the object whose top_offset is still to be read, else null
     AttributeSnapshot snapshot;  ///< owner's attributes as read
   };
