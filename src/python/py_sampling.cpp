@@ -68,7 +68,9 @@ std::shared_ptr<UniformRandomSampler> buildCore(const LeafReading& r, std::size_
     model->topOffset = Eigen::Vector3d(0.0, 0.0, o.top);
     objects.push_back(std::move(model));
   }
-  return std::make_shared<UniformRandomSampler>("robosuite", r.params, objects);
+  UniformSamplerParams params = r.params;
+  params.orientations = false;  // quaternion() computes robosuite's from the angles
+  return std::make_shared<UniformRandomSampler>("robosuite", params, objects);
 }
 
 /// robosuite's quaternion (w, x, y, z) of an object turned by @p angle: float64, or float32
@@ -219,6 +221,9 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
 
 /// True when @p sampler is @p type's (or a subclass that keeps its sample()).
 bool nativeOf(py::handle sampler, PyTypeObject* type) {
+  if (Py_IS_TYPE(sampler.ptr(), type)) {
+    return true;  // the class itself: its sample() is its own
+  }
   if (!PyObject_TypeCheck(sampler.ptr(), type)) {
     return false;
   }
