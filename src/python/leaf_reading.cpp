@@ -99,11 +99,30 @@ void readReference(py::handle placed, py::handle reference, bool onTop, LeafRead
 }
 
 bool truth(const py::object& value) {
+  if (value.ptr() == Py_True || value.ptr() == Py_False) {
+    return value.ptr() == Py_True;
+  }
   const int v = PyObject_IsTrue(value.ptr());
   if (v < 0) {
     throw py::error_already_set();
   }
   return v == 1;
+}
+
+/// A list or tuple of two floats (numpy's float64 among them) into @p out: read as
+/// `a, b = value` and float() read them, without a Python call. @return false when it is not.
+bool floatPair(PyObject* value, Eigen::Vector2d& out) {
+  if ((!PyList_CheckExact(value) && !PyTuple_CheckExact(value)) ||
+      PySequence_Fast_GET_SIZE(value) != 2) {
+    return false;
+  }
+  PyObject* a = PySequence_Fast_GET_ITEM(value, 0);
+  PyObject* b = PySequence_Fast_GET_ITEM(value, 1);
+  if (!isFloat(a) || !isFloat(b)) {
+    return false;
+  }
+  out = Eigen::Vector2d(PyFloat_AS_DOUBLE(a), PyFloat_AS_DOUBLE(b));
+  return true;
 }
 
 /// Two exact str objects equal (their text; as == compares them).
@@ -256,8 +275,9 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
 void readParams(PyUniformSampler& s, bool defaultReference, LeafReading& out) {
   UniformSamplerParams& p = out.params;
   py::object pair[2];
-  if (!unpack(s.xRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.xRange[0]) ||
-      !toDouble(pair[1].ptr(), p.xRange[1])) {
+  if (!floatPair(s.xRange.ptr(), p.xRange) &&
+      (!unpack(s.xRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.xRange[0]) ||
+       !toDouble(pair[1].ptr(), p.xRange[1]))) {
     out.pending.note(0, Stage::BeforeX);
   }
   // A float64 array of three or more, read at once (reading it runs no Python code).
@@ -266,8 +286,9 @@ void readParams(PyUniformSampler& s, bool defaultReference, LeafReading& out) {
   if (defaultReference && !referenceRead && !itemAsDouble(s.referencePos.ptr(), 0, out.base[0])) {
     out.pending.note(0, Stage::BeforeY);
   }
-  if (!unpack(s.yRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.yRange[0]) ||
-      !toDouble(pair[1].ptr(), p.yRange[1])) {
+  if (!floatPair(s.yRange.ptr(), p.yRange) &&
+      (!unpack(s.yRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.yRange[0]) ||
+       !toDouble(pair[1].ptr(), p.yRange[1]))) {
     out.pending.note(0, Stage::BeforeY);
   }
   for (Py_ssize_t i = 1; i < 3 && defaultReference && !referenceRead; ++i) {

@@ -34,11 +34,15 @@ void initNames();
 /// toDouble() for what is not a float.
 bool toDoubleSlow(PyObject* value, double& out);
 
+/// A float, numpy's float64 among them (named first: it skips the search of its bases).
+inline bool isFloat(PyObject* value) {
+  return Py_IS_TYPE(value, &PyFloat_Type) || Py_TYPE(value) == gFloat64Type || PyFloat_Check(value);
+}
+
 /// float(@p value) as numpy reads a scalar (PyFloat_AsDouble: a float, numpy's float64
 /// among them, is its stored value). @return false with a Python error set
 inline bool toDouble(PyObject* value, double& out) {
-  // numpy's float64 is a float: named first, it skips the search of its bases.
-  if (Py_IS_TYPE(value, &PyFloat_Type) || Py_TYPE(value) == gFloat64Type || PyFloat_Check(value)) {
+  if (isFloat(value)) {
     out = PyFloat_AS_DOUBLE(value);
     return true;
   }
