@@ -79,6 +79,11 @@ struct LeafReading {
 void readLeaf(PyUniformSampler& sampler, py::handle placed, py::handle reference, bool onTop,
               LeafReading& out);
 
+/// robosuite's base_offset for a @p reference that is not None (a name in @p placed, or a
+/// point), into @p out (reference_reading.cpp). @throw py::error_already_set where robosuite
+/// raises at once; what it raises later is kept in out.pending
+void readReference(py::handle placed, py::handle reference, bool onTop, LeafReading& out);
+
 /// The numbers the core sampler is built from (objects and parameters), for CoreCache, into
 /// @p key.
 void cacheKey(const LeafReading& reading, std::vector<double>& key);

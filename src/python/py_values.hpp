@@ -75,6 +75,16 @@ bool plainNumber(PyObject* item, double& out);
 /// A list or tuple of exactly @p count floats or ints, read without numpy, as numpy would.
 bool plainNumbers(PyObject* value, std::size_t count, double* out);
 
+/// Sets AssertionError(@p message).
+void setAssertion(const py::str& message);
+
+/// A list or tuple of two floats (numpy's float64 among them) into @p out: read as
+/// `a, b = value` and float() read them, without a Python call. @return false when it is not.
+bool floatPair(PyObject* value, Eigen::Vector2d& out);
+
+/// Two exact str objects equal (their text; as == compares them).
+bool sameText(PyObject* a, PyObject* b);
+
 /// @p object.top_offset[-1]. @return false with a Python error set
 bool readTop(PyObject* object, double& top);
 

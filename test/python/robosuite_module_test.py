@@ -213,11 +213,20 @@ class AgainstReference(unittest.TestCase):
             ("another dict", lambda: setattr(cereal, "__dict__",
                                              dict(cereal.__dict__, horizontal_radius=0.08))),
             ("another name", lambda: setattr(can, "name", "Tin")),
+            ("a property of a base class", lambda: setattr(
+                robosuite_setups.PlainObject, "bottom_offset",
+                property(lambda self: np.array([0.0, 0.0, -0.15])))),
+            ("the base class's property removed",
+             lambda: delattr(robosuite_setups.PlainObject, "bottom_offset")),
         ]
-        for label, change in steps:
-            change()
-            differences, _ = comparison.run(30)
-            self.assertEqual(differences, [], label)
+        try:
+            for label, change in steps:
+                change()
+                differences, _ = comparison.run(30)
+                self.assertEqual(differences, [], label)
+        finally:
+            if "bottom_offset" in vars(robosuite_setups.PlainObject):
+                del robosuite_setups.PlainObject.bottom_offset
 
     def test_each_result_has_arrays_of_its_own(self):
         # Quaternions kept keep their values; what a caller does to one it dropped (its values,
