@@ -41,6 +41,10 @@ CallerRng::CallerRng(py::handle rng) : rng_(py::reinterpret_borrow<py::object>(r
     acquire_ = lock.attr("__enter__");  // acquire(): tries, then waits without the GIL
     release_ = lock.attr("release");
     locked_ = lock.attr("locked");
+    if (PyCFunction_Check(locked_.ptr()) && PyCFunction_GET_FLAGS(locked_.ptr()) == METH_NOARGS) {
+      lockedFunction_ = PyCFunction_GET_FUNCTION(locked_.ptr());
+      lockedSelf_ = PyCFunction_GET_SELF(locked_.ptr());  // held by locked_
+    }
     const int pcg = PyObject_IsInstance(bitGenerator_.ptr(), pcg64Type());
     if (pcg < 0) {
       throw py::error_already_set();
@@ -59,7 +63,9 @@ RngDraws::RngDraws(CallerRng& rng) : rng_(rng) {
   if (rng_.kind_ == CallerRng::Kind::Pcg64) {
     // numpy's PCG64 draws in C: while this thread holds the GIL and runs no Python code, a
     // free lock stays free. Another thread's draw in progress (GIL released) holds it.
-    PyObject* held = PyObject_CallNoArgs(rng_.locked_.ptr());
+    PyObject* held = rng_.lockedFunction_ != nullptr
+                         ? rng_.lockedFunction_(rng_.lockedSelf_, nullptr)
+                         : PyObject_CallNoArgs(rng_.locked_.ptr());
     if (held == nullptr) {
       throw py::error_already_set();
     }
@@ -118,7 +124,7 @@ void RngDraws::lock() {
   locked_ = true;
 }
 
-double RngDraws::uniform(double low, double high) {
+double RngDraws::uniformChecked(double low, double high) {
   if (rng_.kind_ == CallerRng::Kind::Python) {
     py::object value = rng_.rng_.attr("uniform")(py::arg("high") = high, py::arg("low") = low);
     const double v = PyFloat_AsDouble(value.ptr());

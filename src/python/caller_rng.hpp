@@ -8,10 +8,12 @@
 #include <pybind11/pybind11.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
 #include "placement_samplers/sampling/pcg64.hpp"
+#include "placement_samplers/sampling/random.hpp"
 #include "python/numpy_support.hpp"
 
 namespace placement_samplers::python {
@@ -43,6 +45,9 @@ class CallerRng {
   py::object acquire_;  ///< the bit generator's lock, held while drawing (as numpy does)
   py::object release_;
   py::object locked_;
+  /// locked_'s C function and its lock, called directly (a builtin method without arguments).
+  PyCFunction lockedFunction_ = nullptr;
+  PyObject* lockedSelf_ = nullptr;
 };
 
 /// Draws from a CallerRng for one sampler run: numpy's Generator.uniform(low, high) bit for
@@ -61,12 +66,20 @@ class RngDraws {
   RngDraws& operator=(const RngDraws&) = delete;
 
   /// One draw. @throw py::error_already_set with numpy's or the rng's exception
-  double uniform(double low, double high);
+  double uniform(double low, double high) {
+    const double range = high - low;
+    if (engine_ && std::isfinite(range) && range >= 0) {
+      return low + range * uniform01(*engine_);  // a PCG64's draw, inline: most of them
+    }
+    return uniformChecked(low, high);
+  }
 
   /// Writes a PCG64's state back and releases the lock. @throw py::error_already_set
   void finish();
 
  private:
+  /// uniform() with numpy's checks and the other kinds of rng.
+  double uniformChecked(double low, double high);
   void lock();
   CallerRng& rng_;
   std::optional<Pcg64> engine_;

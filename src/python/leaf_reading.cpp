@@ -3,99 +3,18 @@
 #include <limits>
 #include <string>
 
+#include "python/attribute_snapshot.hpp"
+#include "python/numpy_support.hpp"
 #include "python/py_samplers.hpp"
 #include "python/py_values.hpp"
 
 namespace placement_samplers::python {
 namespace {
 
-/// Sets AssertionError(@p message).
-void setAssertion(const py::str& message) { PyErr_SetObject(PyExc_AssertionError, message.ptr()); }
-
-/// True when the list or tuple @p value holds floats only.
-bool allFloats(PyObject* value) {
-  for (Py_ssize_t i = 0; i < PySequence_Fast_GET_SIZE(value); ++i) {
-    if (!PyFloat_Check(PySequence_Fast_GET_ITEM(value, i))) {
-      return false;
-    }
-  }
-  return true;
-}
-
-/// base_offset[0], [1], [2] of a numpy array or sequence, raised where robosuite reads them.
-void readBase(PyObject* base, LeafReading& out) {
-  const Stage stages[3] = {Stage::BeforeY, Stage::AfterY, Stage::AfterY};
-  for (Py_ssize_t i = 0; i < 3; ++i) {
-    if (!itemAsDouble(base, i, out.base[i])) {
-      out.pending.note(0, stages[i]);
-    }
-  }
-}
-
-/// robosuite's base_offset for a reference that is not None: raised at once when wrong.
-void readReference(py::handle placed, py::handle reference, bool onTop, LeafReading& out) {
-  if (Py_IS_TYPE(reference.ptr(), &PyUnicode_Type)) {
-    const int known = PySequence_Contains(placed.ptr(), reference.ptr());
-    if (known < 0) {
-      throw py::error_already_set();
-    }
-    if (known == 0) {
-      setAssertion(py::str("Invalid reference received. Current options are: {}, requested: {}")
-                       .format(placed.attr("keys")(), reference));
-      throw py::error_already_set();
-    }
-    py::object parts[3];
-    if (!unpack(py::object(placed[reference]).ptr(), 3, parts)) {
-      throw py::error_already_set();
-    }
-    double xyz[3];
-    // Floats only: np.array of integers refuses the float top added in place (numpy says so).
-    if (plainNumbers(parts[0].ptr(), 3, xyz) && (!onTop || allFloats(parts[0].ptr()))) {
-      out.base = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
-      if (onTop) {
-        double top = 0.0;
-        if (!itemAsDouble(parts[2].attr("top_offset").ptr(), -1, top)) {
-          throw py::error_already_set();
-        }
-        // np.array(ref_pos) + (0, 0, top), component by component.
-        out.base = Eigen::Vector3d(xyz[0] + 0.0, xyz[1] + 0.0, xyz[2] + top);
-      }
-      return;
-    }
-    py::module_ numpy = py::module_::import("numpy");
-    py::object base = numpy.attr("array")(parts[0]);
-    if (onTop) {
-      py::object addend =
-          numpy.attr("array")(py::make_tuple(0, 0, parts[2].attr("top_offset")[py::int_(-1)]));
-      PyObject* sum = PyNumber_InPlaceAdd(base.ptr(), addend.ptr());
-      if (sum == nullptr) {
-        throw py::error_already_set();
-      }
-      base = py::reinterpret_steal<py::object>(sum);
-    }
-    readBase(base.ptr(), out);
-    return;
-  }
-  double xyz[3];
-  if (plainNumbers(reference.ptr(), 3, xyz)) {
-    out.base = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
-    return;
-  }
-  py::object base = py::module_::import("numpy").attr("array")(reference);
-  py::tuple shape = base.attr("shape");
-  if (shape.empty()) {
-    PyErr_SetString(PyExc_IndexError, "tuple index out of range");
-    throw py::error_already_set();
-  }
-  if (!py::object(shape[0]).equal(py::int_(3))) {
-    setAssertion(
-        py::str("Invalid reference received. Should be (x,y,z) 3-tuple, but got: {}").format(base));
-    throw py::error_already_set();
-  }
-  readBase(base.ptr(), out);
-}
-
 bool truth(const py::object& value) {
+  if (value.ptr() == Py_True || value.ptr() == Py_False) {
+    return value.ptr() == Py_True;
+  }
   const int v = PyObject_IsTrue(value.ptr());
   if (v < 0) {
     throw py::error_already_set();
@@ -103,29 +22,70 @@ bool truth(const py::object& value) {
   return v == 1;
 }
 
-/// Object @p k as robosuite reads it; its exception kept with where it is raised.
+/// Whether @p name equals one of the names of the objects before @p k, as a set of them tells:
+/// str names compared as they are, any other in @p seen (made when first needed; the caller
+/// adds each name that passes). @return 1, 0, or -1 with a Python error set
+int amongEarlier(const LeafReading& out, std::size_t k, PyObject* name, py::object& seen) {
+  if (!seen && PyUnicode_CheckExact(name)) {
+    std::size_t j = 0;
+    for (; j < k && PyUnicode_CheckExact(out.objects[j].name.ptr()); ++j) {
+      PyObject* other = out.objects[j].name.ptr();
+      if (other == name || sameText(other, name)) {
+        return 1;
+      }
+    }
+    if (j == k) {
+      return 0;
+    }
+  }
+  if (!seen) {
+    seen = py::reinterpret_steal<py::object>(PySet_New(nullptr));
+    for (std::size_t j = 0; seen && j < k; ++j) {
+      if (PySet_Add(seen.ptr(), out.objects[j].name.ptr()) < 0) {
+        return -1;
+      }
+    }
+    if (!seen) {
+      return -1;
+    }
+  }
+  return PySet_Contains(seen.ptr(), name);
+}
+
+/// Object @p k as robosuite reads it; its exception kept with where it is raised. Its
+/// attributes come from @p snapshot while it is current (taken anew when it is not).
 void readObject(std::size_t k, py::handle object, py::handle placed, py::object& seen,
-                LeafReading& out) {
+                AttributeSnapshot& snapshot, LeafReading& out) {
   UniformSamplerParams& p = out.params;
   out.objects.emplace_back();
   ObjectReading& o = out.objects.back();
   o.object = py::reinterpret_borrow<py::object>(object);
-  PyObject* name = PyObject_GetAttr(object.ptr(), names().name);
-  if (name == nullptr) {
-    return out.pending.note(k, Stage::BeforeX);
+  const bool snapped = snapshot.current(object.ptr()) || snapshot.take(object.ptr());
+  o.snapshot = snapshot;
+  PyObject* name = nullptr;
+  if (snapped) {
+    name = snapshot.name;
+    Py_INCREF(name);
+  } else {
+    name = PyObject_GetAttr(object.ptr(), names().name);
+    if (name == nullptr) {
+      return out.pending.note(k, Stage::BeforeX);
+    }
   }
   o.name = py::reinterpret_steal<py::object>(name);
-  int known = PyDict_Check(placed.ptr()) ? PyDict_Contains(placed.ptr(), name)
-                                         : PySequence_Contains(placed.ptr(), name);
+  int known = 0;
+  if (PyDict_Check(placed.ptr())) {
+    // A str's hash is kept in it: looked up with it, as PyDict_Contains would.
+    const Py_hash_t hash =
+        PyUnicode_CheckExact(name) ? reinterpret_cast<PyASCIIObject*>(name)->hash : -1;
+    known = hash != -1 ? _PyDict_Contains_KnownHash(placed.ptr(), name, hash)
+                       : PyDict_Contains(placed.ptr(), name);
+  } else {
+    known = PySequence_Contains(placed.ptr(), name);
+  }
   if (known == 0 && k > 0) {
     // The objects before it in this sampler are placed by now: their names count too.
-    if (!seen) {
-      seen = py::reinterpret_steal<py::object>(PySet_New(nullptr));
-      if (!seen || PySet_Add(seen.ptr(), out.objects.front().name.ptr()) < 0) {
-        throw py::error_already_set();
-      }
-    }
-    known = PySet_Contains(seen.ptr(), name);
+    known = amongEarlier(out, k, name, seen);
   }
   if (known != 0) {
     if (known == 1) {
@@ -136,13 +96,24 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
   if (seen && PySet_Add(seen.ptr(), name) < 0) {
     throw py::error_already_set();
   }
-  PyObject* radius = PyObject_GetAttr(object.ptr(), names().horizontalRadius);
-  py::object radiusGuard = py::reinterpret_steal<py::object>(radius);
-  PyObject* bottom =
-      radius != nullptr ? PyObject_GetAttr(object.ptr(), names().bottomOffset) : nullptr;
-  py::object bottomGuard = py::reinterpret_steal<py::object>(bottom);
-  if (bottom == nullptr) {
-    return out.pending.note(k, Stage::BeforeX);
+  // A name's __eq__ may have run Python code: the snapshot holds only while current.
+  const bool plain = snapped && snapshot.current(object.ptr());
+  py::object radiusGuard;
+  py::object bottomGuard;
+  PyObject* radius = nullptr;
+  PyObject* bottom = nullptr;
+  if (plain) {
+    radius = snapshot.radius;
+    bottom = snapshot.bottom;
+  } else {
+    o.snapshot.clear();
+    radius = PyObject_GetAttr(object.ptr(), names().horizontalRadius);
+    radiusGuard = py::reinterpret_steal<py::object>(radius);
+    bottom = radius != nullptr ? PyObject_GetAttr(object.ptr(), names().bottomOffset) : nullptr;
+    bottomGuard = py::reinterpret_steal<py::object>(bottom);
+    if (bottom == nullptr) {
+      return out.pending.note(k, Stage::BeforeX);
+    }
   }
   if (!toDouble(radius, o.radius)) {
     // Used by the boundary shrink (before the x draw) and by the overlap test.
@@ -160,12 +131,18 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
     return out.pending.note(k, Stage::AfterY);
   }
   PyObject* initQuat = nullptr;
-  const int has = _PyObject_LookupAttr(object.ptr(), names().initQuat, &initQuat);
-  if (has < 0) {
-    return out.pending.note(k, Stage::AfterRotation);
+  py::object initQuatGuard;
+  // The numbers read so far may have run Python code (a __float__, a __getitem__).
+  if (plain && snapshot.current(object.ptr())) {
+    initQuat = snapshot.initQuat;
+  } else {
+    o.snapshot.clear();
+    if (_PyObject_LookupAttr(object.ptr(), names().initQuat, &initQuat) < 0) {
+      return out.pending.note(k, Stage::AfterRotation);
+    }
+    initQuatGuard = py::reinterpret_steal<py::object>(initQuat);
   }
-  if (has == 1) {
-    py::object guard = py::reinterpret_steal<py::object>(initQuat);
+  if (initQuat != nullptr) {
     py::object parts[4];
     o.hasInitQuat = true;
     if (!unpack(initQuat, 4, parts)) {
@@ -183,18 +160,23 @@ void readObject(std::size_t k, py::handle object, py::handle placed, py::object&
 void readParams(PyUniformSampler& s, bool defaultReference, LeafReading& out) {
   UniformSamplerParams& p = out.params;
   py::object pair[2];
-  if (!unpack(s.xRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.xRange[0]) ||
-      !toDouble(pair[1].ptr(), p.xRange[1])) {
+  if (!floatPair(s.xRange.ptr(), p.xRange) &&
+      (!unpack(s.xRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.xRange[0]) ||
+       !toDouble(pair[1].ptr(), p.xRange[1]))) {
     out.pending.note(0, Stage::BeforeX);
   }
-  if (defaultReference && !itemAsDouble(s.referencePos.ptr(), 0, out.base[0])) {
+  // A float64 array of three or more, read at once (reading it runs no Python code).
+  const bool referenceRead =
+      defaultReference && float64ArrayItems(s.referencePos.ptr(), 3, out.base.data());
+  if (defaultReference && !referenceRead && !itemAsDouble(s.referencePos.ptr(), 0, out.base[0])) {
     out.pending.note(0, Stage::BeforeY);
   }
-  if (!unpack(s.yRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.yRange[0]) ||
-      !toDouble(pair[1].ptr(), p.yRange[1])) {
+  if (!floatPair(s.yRange.ptr(), p.yRange) &&
+      (!unpack(s.yRange.ptr(), 2, pair) || !toDouble(pair[0].ptr(), p.yRange[0]) ||
+       !toDouble(pair[1].ptr(), p.yRange[1]))) {
     out.pending.note(0, Stage::BeforeY);
   }
-  for (Py_ssize_t i = 1; i < 3 && defaultReference; ++i) {
+  for (Py_ssize_t i = 1; i < 3 && defaultReference && !referenceRead; ++i) {
     if (!itemAsDouble(s.referencePos.ptr(), i, out.base[i])) {
       out.pending.note(0, Stage::AfterY);
     }
@@ -284,7 +266,13 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
   out.base = Eigen::Vector3d::Zero();
   out.axis = 2;
   UniformSamplerParams& p = out.params;
-  p = UniformSamplerParams();
+  // What readParams() and readObject() read; every other parameter keeps its default (the
+  // reading is made once and reused: making the whole set anew costs more than a small run).
+  p.xRange = Eigen::Vector2d::Zero();
+  p.yRange = Eigen::Vector2d::Zero();
+  p.rotation = RotationSpec();
+  p.rotationAxis = 2;
+  p.zOffset = 0.0;
   p.checkInputs = false;
   p.maxAttempts = 5000;  // robosuite's range(5000)
   const bool defaultReference = reference.is_none();
@@ -296,7 +284,10 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
   py::object seen;
   py::object objects = s.mujocoObjects;  // held: reading may replace the attribute
   auto read = [&](std::size_t k, PyObject* object) {
-    readObject(k, object, placed, seen, out);
+    if (k == s.snapshots.size()) {
+      s.snapshots.emplace_back();
+    }
+    readObject(k, object, placed, seen, s.snapshots[k], out);
     if (k == 0) {
       readParams(s, defaultReference, out);
     }
@@ -324,7 +315,7 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
     // Each object but the last is tested against by the ones after it: their tops now.
     for (std::size_t j = 0; j + 1 < out.objects.size(); ++j) {
       ObjectReading& o = out.objects[j];
-      if (!readTop(o.object.ptr(), o.top)) {
+      if (!readTop(o.object.ptr(), o.snapshot, o.top)) {
         out.pending.note(j + 1, Stage::AfterY);
         break;
       }
@@ -335,13 +326,26 @@ void readLeaf(PyUniformSampler& s, py::handle placed, py::handle reference, bool
 
 void cacheKey(const LeafReading& r, std::vector<double>& key) {
   const UniformSamplerParams& p = r.params;
-  key.assign({p.xRange[0], p.xRange[1], p.yRange[0], p.yRange[1],
-              static_cast<double>(p.rotation.kind), p.rotation.low, p.rotation.high,
-              static_cast<double>(p.rotationAxis), p.ensureObjectBoundaryInRange ? 1.0 : 0.0,
-              p.ensureValidPlacement ? 1.0 : 0.0, p.zOffset,
-              static_cast<double>(r.objects.size())});
-  for (const ObjectReading& o : r.objects) {
-    key.insert(key.end(), {o.radius, o.bottom, o.top});
+  const std::size_t n = r.objects.size();
+  key.resize(12 + 3 * n);
+  double* k = key.data();
+  k[0] = p.xRange[0];
+  k[1] = p.xRange[1];
+  k[2] = p.yRange[0];
+  k[3] = p.yRange[1];
+  k[4] = static_cast<double>(p.rotation.kind);
+  k[5] = p.rotation.low;
+  k[6] = p.rotation.high;
+  k[7] = static_cast<double>(p.rotationAxis);
+  k[8] = p.ensureObjectBoundaryInRange ? 1.0 : 0.0;
+  k[9] = p.ensureValidPlacement ? 1.0 : 0.0;
+  k[10] = p.zOffset;
+  k[11] = static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ObjectReading& o = r.objects[i];
+    k[12 + 3 * i] = o.radius;
+    k[13 + 3 * i] = o.bottom;
+    k[14 + 3 * i] = o.top;
   }
 }
 

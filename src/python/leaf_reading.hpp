@@ -15,6 +15,7 @@
 
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/sampling/uniform_source.hpp"
+#include "python/attribute_snapshot.hpp"
 
 namespace placement_samplers::python {
 
@@ -56,6 +57,8 @@ struct ObjectReading {
   bool topKnown = false;
   bool hasInitQuat = false;
   std::array<double, 4> initQuat{};  ///< init_quat as given: (x, y, z, w) in quat_multiply
+  /// Its attributes as read, for reading its top later (cleared when they were not plain).
+  AttributeSnapshot snapshot;
 };
 
 /// The sampler's numbers as robosuite reads them in one sample() call.
@@ -75,6 +78,11 @@ struct LeafReading {
 /// @throw py::error_already_set
 void readLeaf(PyUniformSampler& sampler, py::handle placed, py::handle reference, bool onTop,
               LeafReading& out);
+
+/// robosuite's base_offset for a @p reference that is not None (a name in @p placed, or a
+/// point), into @p out (reference_reading.cpp). @throw py::error_already_set where robosuite
+/// raises at once; what it raises later is kept in out.pending
+void readReference(py::handle placed, py::handle reference, bool onTop, LeafReading& out);
 
 /// The numbers the core sampler is built from (objects and parameters), for CoreCache, into
 /// @p key.

@@ -5,6 +5,8 @@
 
 #include "placement_samplers/errors.hpp"
 #include "python/numpy_support.hpp"
+#include "python/ordered_values.hpp"
+#include "python/py_values.hpp"
 #include "python/py_batch.hpp"
 #include "python/py_samplers.hpp"
 
@@ -26,6 +28,8 @@ PYBIND11_MODULE(robosuite, m) {
   if (!initNumpy()) {
     throw py::error_already_set();
   }
+  initNames();
+  findOrderedDictLayout();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) {
@@ -51,6 +55,9 @@ random one (returned in 'seed'). threads 0: every core. The GIL is released whil
   m.def("_numpy_loops_in_use", &cosSinLoopsInUse,
         "True when quaternions use numpy's own float64 cos and sin loops (checked at import); "
         "else numpy is called for each.");
+  m.def("_ordered_dict_walks", &orderedDictWalks,
+        "True when a composite walks its OrderedDicts' lists of keys itself (their layout "
+        "checked at import); else through their values() iterators.");
   m.def(
       "_pcg64_state_access",
       []() { return pcg64StateAccess() == Pcg64StateAccess::Memory ? "memory" : "dict"; },

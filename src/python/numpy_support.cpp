@@ -5,6 +5,7 @@
 #include <numpy/arrayobject.h>
 #include <numpy/random/bitgen.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -185,22 +186,29 @@ bool initNumpy() {
   return true;
 }
 
-bool numpyCosSin(double x, double& cosine, double& sine) {
-  // The last angle's values: fixed rotations ask for the same one again and again.
-  static bool haveLast = false;
-  static double lastX = 0.0;
-  static double lastCos = 0.0;
-  static double lastSin = 0.0;
-  if (haveLast && sameBits(x, lastX)) {
-    cosine = lastCos;
-    sine = lastSin;
-    return true;
+bool numpyCosSin(double x, double& cosine, double& sine, bool fixed) {
+  // The last fixed angle's values and the last angle's: fixed rotations ask for the same one
+  // again and again, also when drawn rotations come between.
+  struct Known {
+    bool valid = false;
+    double x = 0.0;
+    double cosine = 0.0;
+    double sine = 0.0;
+  };
+  static Known lastFixed;
+  static Known last;
+  for (const Known* k : {&lastFixed, &last}) {
+    if (k->valid && sameBits(x, k->x)) {
+      cosine = k->cosine;
+      sine = k->sine;
+      return true;
+    }
   }
   if (gLoopsChecked && callLoop(gCosLoop, x, cosine) && callLoop(gSinLoop, x, sine)) {
-    haveLast = true;
-    lastX = x;
-    lastCos = cosine;
-    lastSin = sine;
+    last = Known{true, x, cosine, sine};
+    if (fixed) {
+      lastFixed = last;
+    }
     return true;
   }
   PyErr_Clear();
@@ -227,24 +235,90 @@ bool float64ArrayItem(PyObject* value, Py_ssize_t index, double& out) {
   return true;
 }
 
-PyObject* newFloat64Array(const double* values, std::size_t count) {
-  npy_intp dims[1] = {static_cast<npy_intp>(count)};
-  PyObject* array = PyArray_SimpleNew(1, dims, NPY_DOUBLE);
-  if (array != nullptr) {
-    std::memcpy(PyArray_DATA(reinterpret_cast<PyArrayObject*>(array)), values,
-                count * sizeof(double));
+bool float64ArrayItems(PyObject* value, std::size_t count, double* out) {
+  if (!PyArray_CheckExact(value)) {
+    return false;
   }
-  return array;
+  auto* array = reinterpret_cast<PyArrayObject*>(value);
+  if (PyArray_NDIM(array) != 1 || PyArray_TYPE(array) != NPY_DOUBLE ||
+      !PyArray_ISNOTSWAPPED(array) || PyArray_DIM(array, 0) < static_cast<npy_intp>(count)) {
+    return false;
+  }
+  const char* data = PyArray_BYTES(array);
+  const npy_intp stride = PyArray_STRIDE(array, 0);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::memcpy(&out[i], data + static_cast<npy_intp>(i) * stride, sizeof(double));
+  }
+  return true;
+}
+
+namespace {
+
+/// numpy keeps no free list of small arrays: making an array and freeing it again is most of
+/// the cost of a quaternion in robosuite's result. The module keeps the quaternion arrays it
+/// made last; one that nothing else holds any more (the pool's is its only reference) and that
+/// is still exactly as made (a 1-d array of its dtype and size, no base, no weak reference,
+/// its flags) is filled anew instead of being freed and made again: nothing can tell it from a
+/// new array.
+class ArrayPool {
+ public:
+  ArrayPool(int type, std::size_t itemSize) : type_(type), itemSize_(itemSize) {}
+
+  PyObject* take(const void* values, std::size_t count) {
+    PyObject*& slot = slots_[next_];
+    next_ = (next_ + 1) % slots_.size();
+    const std::size_t bytes = count * itemSize_;
+    if (slot != nullptr && Py_REFCNT(slot) == 1 && unchanged(slot, count)) {
+      std::memcpy(PyArray_DATA(reinterpret_cast<PyArrayObject*>(slot)), values, bytes);
+      Py_INCREF(slot);
+      return slot;
+    }
+    npy_intp dims[1] = {static_cast<npy_intp>(count)};
+    PyObject* array = PyArray_SimpleNew(1, dims, type_);
+    if (array == nullptr) {
+      return nullptr;
+    }
+    auto* a = reinterpret_cast<PyArrayObject*>(array);
+    std::memcpy(PyArray_DATA(a), values, bytes);
+    if (descr_ == nullptr) {
+      descr_ = PyArray_DESCR(a);  // numpy's own, kept for the life of the process
+      Py_INCREF(descr_);
+      flags_ = PyArray_FLAGS(a);
+    }
+    Py_XSETREF(slot, array);
+    Py_INCREF(array);
+    return array;
+  }
+
+ private:
+  bool unchanged(PyObject* slot, std::size_t count) const {
+    auto* a = reinterpret_cast<PyArrayObject*>(slot);
+    return Py_IS_TYPE(slot, &PyArray_Type) && PyArray_NDIM(a) == 1 &&
+           PyArray_DIM(a, 0) == static_cast<npy_intp>(count) && PyArray_DESCR(a) == descr_ &&
+           PyArray_STRIDE(a, 0) == descr_->elsize && PyArray_FLAGS(a) == flags_ &&
+           PyArray_BASE(a) == nullptr &&
+           reinterpret_cast<PyArrayObject_fields*>(a)->weakreflist == nullptr;
+  }
+
+  int type_;
+  std::size_t itemSize_;
+  PyArray_Descr* descr_ = nullptr;
+  int flags_ = 0;
+  std::array<PyObject*, 64> slots_{};
+  std::size_t next_ = 0;
+};
+
+}  // namespace
+
+PyObject* newFloat64Array(const double* values, std::size_t count) {
+  static ArrayPool* pool =
+      new ArrayPool(NPY_DOUBLE, sizeof(double));  // kept for the life of the process
+  return pool->take(values, count);
 }
 
 PyObject* newFloat32Array(const float* values, std::size_t count) {
-  npy_intp dims[1] = {static_cast<npy_intp>(count)};
-  PyObject* array = PyArray_SimpleNew(1, dims, NPY_FLOAT);
-  if (array != nullptr) {
-    std::memcpy(PyArray_DATA(reinterpret_cast<PyArrayObject*>(array)), values,
-                count * sizeof(float));
-  }
-  return array;
+  static ArrayPool* pool = new ArrayPool(NPY_FLOAT, sizeof(float));
+  return pool->take(values, count);
 }
 
 PyObject* newArray(const char* dtype, const std::vector<std::int64_t>& shape, void** data) {

@@ -22,8 +22,9 @@ bool initNumpy();
 /// cos(@p x) and sin(@p x) exactly as numpy's np.cos and np.sin give them for a float64:
 /// numpy's own loops (with AVX-512, numpy's are not the C library's), or numpy called from
 /// Python when they could not be checked.
+/// @p fixed: @p x is a fixed rotation's, asked for again and again (its values are kept).
 /// @return false with a Python error set when calling numpy failed
-bool numpyCosSin(double x, double& cosine, double& sine);
+bool numpyCosSin(double x, double& cosine, double& sine, bool fixed = false);
 
 /// True when numpyCosSin() calls numpy's loops directly (checked at import).
 bool cosSinLoopsInUse();
@@ -32,6 +33,10 @@ bool cosSinLoopsInUse();
 /// numpy.ndarray), read in its memory: @return false when @p value is no such array or the
 /// index is out of its range (the caller then asks Python).
 bool float64ArrayItem(PyObject* value, Py_ssize_t index, double& out);
+
+/// @p value [0] .. [@p count - 1] for a 1-d float64 numpy array (exactly numpy.ndarray) of
+/// at least @p count items, read in its memory: @return false when it is no such array.
+bool float64ArrayItems(PyObject* value, std::size_t count, double* out);
 
 /// A new 1-d numpy array of float64 / float32 holding @p values (a new reference or nullptr
 /// with a Python error).

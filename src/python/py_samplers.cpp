@@ -90,10 +90,12 @@ PyObject* fastSample(PyObject* self, PyObject* const* args, Py_ssize_t count, Py
   bool given[3] = {false, false, false};
   const Py_ssize_t positional = PyVectorcall_NARGS(count);
   // The class's own name, as Python's messages give a method's qualified name.
-  const char* type = std::strrchr(Py_TYPE(self)->tp_name, '.') != nullptr
-                         ? std::strrchr(Py_TYPE(self)->tp_name, '.') + 1
-                         : Py_TYPE(self)->tp_name;
+  auto typeName = [self]() {
+    const char* dot = std::strrchr(Py_TYPE(self)->tp_name, '.');
+    return dot != nullptr ? dot + 1 : Py_TYPE(self)->tp_name;
+  };
   if (positional > 3) {
+    const char* type = typeName();
     PyErr_Format(PyExc_TypeError,
                  "%s.sample() takes from 1 to 4 positional arguments but %zd were given", type,
                  positional + 1);
@@ -111,11 +113,13 @@ PyObject* fastSample(PyObject* self, PyObject* const* args, Py_ssize_t count, Py
       ++i;
     }
     if (i == 3) {
+      const char* type = typeName();
       PyErr_Format(PyExc_TypeError, "%s.sample() got an unexpected keyword argument '%U'", type,
                    name);
       return nullptr;
     }
     if (given[i]) {
+      const char* type = typeName();
       PyErr_Format(PyExc_TypeError, "%s.sample() got multiple values for argument '%s'", type,
                    kNames[i]);
       return nullptr;

@@ -6,10 +6,12 @@
 
 #include <pybind11/pybind11.h>
 
+#include <deque>
 #include <memory>
 #include <vector>
 
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
+#include "python/attribute_snapshot.hpp"
 #include "python/caller_rng.hpp"
 
 namespace placement_samplers::python {
@@ -21,7 +23,8 @@ class SampleCall;
 /// The core sampler built from one reading of a Python sampler's attributes, kept while they
 /// read the same (py_sampling.cpp).
 struct CoreCache {
-  std::vector<double> key;  ///< the numbers it was built from, bit for bit
+  std::vector<double> key;      ///< the numbers it was built from, bit for bit
+  std::vector<double> reading;  ///< this call's numbers (kept: no allocation per call)
   std::shared_ptr<UniformRandomSampler> sampler;
 };
 
@@ -50,6 +53,9 @@ class PyUniformSampler {
   py::object rng;
 
   CoreCache core;
+  /// The attributes of mujoco_objects[k] as last read (attribute_snapshot.hpp); a deque: a
+  /// nested call may add to it while a reading holds one.
+  std::deque<AttributeSnapshot> snapshots;
   CallerRng rngInfo;  ///< what `rng` is, while it stays the same object
   CallSlot slot;
 };

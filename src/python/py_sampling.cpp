@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "python/numpy_support.hpp"
+#include "python/ordered_values.hpp"
 #include "python/py_samplers.hpp"
 #include "python/py_values.hpp"
 #include "python/sample_call.hpp"
@@ -67,7 +68,9 @@ std::shared_ptr<UniformRandomSampler> buildCore(const LeafReading& r, std::size_
     model->topOffset = Eigen::Vector3d(0.0, 0.0, o.top);
     objects.push_back(std::move(model));
   }
-  return std::make_shared<UniformRandomSampler>("robosuite", r.params, objects);
+  UniformSamplerParams params = r.params;
+  params.orientations = false;  // quaternion() computes robosuite's from the angles
+  return std::make_shared<UniformRandomSampler>("robosuite", params, objects);
 }
 
 /// robosuite's quaternion (w, x, y, z) of an object turned by @p angle: float64, or float32
@@ -97,7 +100,8 @@ py::object quaternion(const LeafReading& r, const ObjectReading& o, double angle
       }
     }
   } else {
-    if (!numpyCosSin(angle / 2.0, q[0], q[1 + r.axis])) {
+    if (!numpyCosSin(angle / 2.0, q[0], q[1 + r.axis],
+                     r.params.rotation.kind == RotationSpec::Kind::Fixed)) {
       throw py::error_already_set();
     }
     if (!o.hasInitQuat) {
@@ -115,6 +119,29 @@ py::object quaternion(const LeafReading& r, const ObjectReading& o, double angle
       static_cast<float>(-x1 * x0 - y1 * y0 - z1 * z0 + w1 * w0),
   };
   return py::reinterpret_steal<py::object>(newFloat32Array(product, 4));
+}
+
+/// robosuite's (pos, quat, obj), pos a tuple of three floats.
+py::object placement(const Eigen::Vector3d& position, const py::object& quat,
+                     const py::object& object) {
+  PyObject* pos = PyTuple_New(3);
+  py::object posGuard = py::reinterpret_steal<py::object>(pos);
+  PyObject* value = pos != nullptr ? PyTuple_New(3) : nullptr;
+  py::object valueGuard = py::reinterpret_steal<py::object>(value);
+  if (value == nullptr) {
+    throw py::error_already_set();
+  }
+  for (Py_ssize_t i = 0; i < 3; ++i) {
+    PyObject* number = PyFloat_FromDouble(position[i]);
+    if (number == nullptr) {
+      throw py::error_already_set();
+    }
+    PyTuple_SET_ITEM(pos, i, number);
+  }
+  PyTuple_SET_ITEM(value, 0, posGuard.release().ptr());
+  PyTuple_SET_ITEM(value, 1, quat.inc_ref().ptr());
+  PyTuple_SET_ITEM(value, 2, object.inc_ref().ptr());
+  return valueGuard;
 }
 
 bool truth(py::handle value) {
@@ -142,14 +169,14 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
   if (r.pending.error) {
     core = buildCore(r, r.pending.object + 1);
   } else {
-    std::vector<double>& key = call.key();
+    std::vector<double>& key = self.core.reading;
     cacheKey(r, key);
     const bool same =
         self.core.sampler && self.core.key.size() == key.size() &&
         std::memcmp(key.data(), self.core.key.data(), key.size() * sizeof(double)) == 0;
     if (!same) {
       self.core.sampler = buildCore(r, r.objects.size());
-      self.core.key = key;
+      self.core.key.swap(key);
     }
     core = self.core.sampler;
   }
@@ -181,8 +208,8 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
   for (std::size_t i = 0; i < r.objects.size(); ++i) {
     const ObjectPlacement& p = context.placements()[before + i];
     const ObjectReading& o = r.objects[i];
-    py::tuple pos = py::make_tuple(p.position.x(), p.position.y(), p.position.z());
-    py::tuple value = py::make_tuple(pos, quaternion(r, o, call.angles()[i]), o.object);
+    py::object quat = quaternion(r, o, call.angles()[i]);
+    py::object value = placement(p.position, quat, o.object);
     // Exactly a dict: an OrderedDict keeps its order only through its own __setitem__.
     const int status = PyDict_CheckExact(dict) ? PyDict_SetItem(dict, o.name.ptr(), value.ptr())
                                                : PyObject_SetItem(dict, o.name.ptr(), value.ptr());
@@ -194,6 +221,9 @@ void runUniform(PyUniformSampler& self, SampleCall& call, py::handle reference, 
 
 /// True when @p sampler is @p type's (or a subclass that keeps its sample()).
 bool nativeOf(py::handle sampler, PyTypeObject* type) {
+  if (Py_IS_TYPE(sampler.ptr(), type)) {
+    return true;  // the class itself: its sample() is its own
+  }
   if (!PyObject_TypeCheck(sampler.ptr(), type)) {
     return false;
   }
@@ -215,36 +245,15 @@ void fillIn(py::handle args, PyObject* key, py::handle value) {
   }
 }
 
-/// An iterator over the values of a dict in its order (an OrderedDict's own order).
-py::object valuesOf(py::handle mapping) {
-  static PyObject* values = PyUnicode_InternFromString("values");
-  PyObject* view = PyObject_CallMethodNoArgs(mapping.ptr(), values);
-  PyObject* iterator = view != nullptr ? PyObject_GetIter(view) : nullptr;
-  Py_XDECREF(view);
-  if (iterator == nullptr) {
-    throw py::error_already_set();
-  }
-  return py::reinterpret_steal<py::object>(iterator);
-}
-
-/// The next item of @p iterator, or a null object at the end.
-py::object next(const py::object& iterator) {
-  PyObject* item = PyIter_Next(iterator.ptr());
-  if (item == nullptr && PyErr_Occurred()) {
-    throw py::error_already_set();
-  }
-  return py::reinterpret_steal<py::object>(item);
-}
-
 void runComposite(PyCompositeSampler& self, SampleCall& call, py::handle reference,
                   py::handle onTop) {
   py::object samplers = self.samplers;  // held: a sampler may replace them
   py::object sampleArgs = self.sampleArgs;
-  py::object samplerValues = valuesOf(samplers);
-  py::object argValues = valuesOf(sampleArgs);
+  OrderedValues samplerValues(samplers);
+  OrderedValues argValues(sampleArgs);
   for (;;) {
-    py::object sampler = next(samplerValues);
-    py::object given = sampler ? next(argValues) : py::object();
+    py::object sampler = samplerValues.next();
+    py::object given = sampler ? argValues.next() : py::object();
     if (!given) {
       break;  // zip() stops at the shorter
     }

@@ -1,5 +1,7 @@
 #include "python/py_values.hpp"
 
+#include <cstring>
+
 #include "python/numpy_support.hpp"
 
 namespace placement_samplers::python {
@@ -12,12 +14,21 @@ PyObject* minusOne() {
 
 }  // namespace
 
-const Names& names() {
-  static const Names names;
-  return names;
+const Names* gNames = nullptr;
+
+PyTypeObject* gFloat64Type = nullptr;
+
+void initNames() {
+  if (gNames == nullptr) {
+    gNames = new Names();  // kept for the life of the process, as the interned strings
+  }
+  if (gFloat64Type == nullptr) {
+    py::object type = py::module_::import("numpy").attr("float64");
+    gFloat64Type = reinterpret_cast<PyTypeObject*>(type.release().ptr());
+  }
 }
 
-bool toDouble(PyObject* value, double& out) {
+bool toDoubleSlow(PyObject* value, double& out) {
   out = PyFloat_AsDouble(value);
   return !(out == -1.0 && PyErr_Occurred());
 }
@@ -53,14 +64,10 @@ bool itemAsDouble(PyObject* sequence, Py_ssize_t index, double& out) {
 }
 
 /// Python's `a, b, ... = value` into @p out (new references), with Python's messages.
-bool unpack(PyObject* value, std::size_t count, py::object* out) {
+bool unpackSlow(PyObject* value, std::size_t count, py::object* out) {
   if ((PyTuple_CheckExact(value) || PyList_CheckExact(value)) &&
       static_cast<std::size_t>(PySequence_Fast_GET_SIZE(value)) == count) {
-    for (std::size_t i = 0; i < count; ++i) {
-      out[i] = py::reinterpret_borrow<py::object>(
-          PySequence_Fast_GET_ITEM(value, static_cast<Py_ssize_t>(i)));
-    }
-    return true;
+    return unpack(value, count, out);
   }
   PyObject* iterator = PyObject_GetIter(value);
   if (iterator == nullptr) {
@@ -124,6 +131,36 @@ bool plainNumbers(PyObject* value, std::size_t count, double* out) {
     }
   }
   return true;
+}
+
+void setAssertion(const py::str& message) { PyErr_SetObject(PyExc_AssertionError, message.ptr()); }
+
+/// A list or tuple of two floats (numpy's float64 among them) into @p out: read as
+/// `a, b = value` and float() read them, without a Python call. @return false when it is not.
+bool floatPair(PyObject* value, Eigen::Vector2d& out) {
+  if ((!PyList_CheckExact(value) && !PyTuple_CheckExact(value)) ||
+      PySequence_Fast_GET_SIZE(value) != 2) {
+    return false;
+  }
+  PyObject* a = PySequence_Fast_GET_ITEM(value, 0);
+  PyObject* b = PySequence_Fast_GET_ITEM(value, 1);
+  if (!isFloat(a) || !isFloat(b)) {
+    return false;
+  }
+  out = Eigen::Vector2d(PyFloat_AS_DOUBLE(a), PyFloat_AS_DOUBLE(b));
+  return true;
+}
+
+/// Two exact str objects equal (their text; as == compares them).
+bool sameText(PyObject* a, PyObject* b) {
+  if (!PyUnicode_IS_READY(a) || !PyUnicode_IS_READY(b)) {
+    return PyUnicode_Compare(a, b) == 0;  // a legacy string: its text made first
+  }
+  const Py_ssize_t length = PyUnicode_GET_LENGTH(a);
+  const int kind = PyUnicode_KIND(a);
+  return length == PyUnicode_GET_LENGTH(b) && kind == PyUnicode_KIND(b) &&
+         std::memcmp(PyUnicode_DATA(a), PyUnicode_DATA(b),
+                     static_cast<std::size_t>(length) * static_cast<std::size_t>(kind)) == 0;
 }
 
 bool readTop(PyObject* object, double& top) {

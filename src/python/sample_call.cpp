@@ -17,7 +17,11 @@ SampleCall::SampleCall() : context_(unused_, checker_) {}
 
 void SampleCall::start(py::handle fixtures) {
   if (fixtures.is_none()) {
-    placed_ = py::dict();
+    // Room for as many as the last call placed: the dict does not grow entry by entry.
+    placed_ = py::reinterpret_steal<py::object>(_PyDict_NewPresized(lastSize_));
+    if (!placed_) {
+      throw py::error_already_set();
+    }
   } else if (PyDict_CheckExact(fixtures.ptr())) {
     placed_ = py::reinterpret_steal<py::object>(PyDict_Copy(fixtures.ptr()));
     if (!placed_) {
@@ -34,6 +38,9 @@ void SampleCall::start(py::handle fixtures) {
 }
 
 void SampleCall::end() {
+  if (placed_ && PyDict_Check(placed_.ptr())) {
+    lastSize_ = PyDict_GET_SIZE(placed_.ptr());
+  }
   placed_ = py::object();
   for (Placed& p : placedHere_) {
     p.owner = py::object();
@@ -59,7 +66,7 @@ void SampleCall::prepareTests(LeafReading& reading) {
     return;
   }
   for (Placed& p : placedHere_) {
-    if (p.owner && !readTop(p.owner.ptr(), p.top)) {
+    if (p.owner && !readTop(p.owner.ptr(), p.snapshot, p.top)) {
       return reading.pending.note(0, Stage::AfterY);  // where the first test reads it
     }
     p.owner = py::object();
@@ -67,7 +74,7 @@ void SampleCall::prepareTests(LeafReading& reading) {
   if (!fixturesRead_) {
     // The values there before this call's own placements: the first fixtures_ of the dict.
     auto add = [&](py::handle value) {
-      Placed entry{Eigen::Vector3d::Zero(), 0.0, 0.0, py::object()};
+      Placed entry{Eigen::Vector3d::Zero(), 0.0, 0.0, py::object(), AttributeSnapshot()};
       readEntry(value, entry.position, entry.radius, entry.top);
       fixtureEntries_.push_back(entry);
     };
@@ -122,8 +129,14 @@ void SampleCall::recordPlacements(const LeafReading& reading, std::size_t before
   const std::vector<ObjectPlacement>& placements = context_.placements();
   for (std::size_t i = 0; i < reading.objects.size(); ++i) {
     const ObjectReading& o = reading.objects[i];
-    placedHere_.push_back(Placed{placements[before + i].position, o.radius, o.top,
-                                 o.topKnown ? py::object() : o.object});
+    Placed& placed = placedHere_.emplace_back();
+    placed.position = placements[before + i].position;
+    placed.radius = o.radius;
+    placed.top = o.top;
+    if (!o.topKnown) {
+      placed.owner = o.object;
+      placed.snapshot = o.snapshot;
+    }
     // Its entry in the context has no top yet.
     stale_ = stale_ || !o.topKnown;
   }

@@ -46,8 +46,6 @@ class SampleCall {
   SampleContext& context() { return context_; }
   /// The reading of the sampler being run (reused between runs).
   LeafReading& reading() { return reading_; }
-  /// Room for a CoreCache key.
-  std::vector<double>& key() { return key_; }
   /// The rotation angle of each object of the current run, in order.
   std::vector<double>& angles() { return angles_; }
   /// Keeps @p sampler alive until end(): the context points into its objects.
@@ -56,17 +54,19 @@ class SampleCall {
  private:
   /// An entry placed by the library's samplers in this call.
   struct Placed {
-    Eigen::Vector3d position;
-    double radius;
-    double top;        ///< top_offset[-1] once read
-    py::object owner;  ///< the object whose top_offset is still to be read, else null
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    double radius = 0.0;
+    double top = 0.0;            ///< top_offset[-1] once read
+    py::object owner;            ///< the object whose top_offset is still to be read, else null
+    AttributeSnapshot snapshot;  ///< owner's attributes as read
   };
 
   /// Makes the context's entries the fixtures (the dict's first fixtures_ values) and placed_.
   void rebuild();
 
   py::object placed_;
-  Engine unused_;  // the samplers draw from the caller's rng (UniformSource)
+  Py_ssize_t lastSize_ = 0;  ///< how many entries the last call's dict had
+  Engine unused_;            // the samplers draw from the caller's rng (UniformSource)
   RadiusChecker checker_;
   SampleContext context_;
   std::size_t fixtures_ = 0;  ///< placed()'s first values that are not in placedHere_
@@ -77,7 +77,6 @@ class SampleCall {
   std::deque<ObjectModel> models_;  ///< the rebuilt entries' objects (stable addresses)
   LeafReading reading_;
   std::vector<double> angles_;
-  std::vector<double> key_;
   std::vector<std::shared_ptr<UniformRandomSampler>> kept_;
 };
 

@@ -121,7 +121,9 @@ bool UniformRandomSampler::placeInRectangle(SampleContext& context, const Entry&
     }
     if (!orientFirst) {
       angle = drawAngle(draws);
-      candidate.orientation = orientationOf(angle, object);
+      if (params_.orientations) {
+        candidate.orientation = orientationOf(angle, object);
+      }
     }
     draws.rotation(angle);
     context.addPlacement(name(), candidate, attempt, params_.hides);

@@ -26,6 +26,7 @@ import sys
 import tempfile
 import types
 import unittest
+import weakref
 
 import numpy as np
 
@@ -174,6 +175,85 @@ class AgainstReference(unittest.TestCase):
         self.assertEqual(differences, [])
         print("stacked: %d calls with fixtures, %d raised, same results and Generator states"
               % (CALLS, failed))
+
+    def test_attributes_changed_between_calls(self):
+        # robosuite reads the objects' attributes at every call: a change between calls (of an
+        # instance attribute, of an array in place, of the class, of the object's class or
+        # dict) shows in the next call.
+        comparison = Comparison(SETUPS["pick_place"], self.theirs, seed=11)
+
+        class Fresh(robosuite_setups.PlainObject):
+            pass
+
+        class Other(robosuite_setups.PlainObject):
+            bottom_offset = property(lambda self: np.array([0.0, 0.0, -0.01]))
+            top_offset = np.array([0.0, 0.0, 0.06])
+
+        objects = list(comparison.mine.samplers["CollisionObjectSampler"].mujoco_objects)
+        for obj in objects:
+            obj.__class__ = Fresh
+        milk, bread, cereal, can = objects
+        steps = [
+            ("radius", lambda: setattr(milk, "horizontal_radius", 0.09)),
+            ("radius again", lambda: setattr(milk, "horizontal_radius", 0.025)),
+            ("bottom changed in place", lambda: bread.bottom_offset.__setitem__(2, -0.3)),
+            ("top", lambda: setattr(cereal, "top_offset", np.array([0.0, 0.0, 0.4]))),
+            ("top changed in place", lambda: cereal.top_offset.__setitem__(2, -0.2)),
+            ("init_quat added", lambda: setattr(can, "init_quat", [0.0, 0.0, 0.38, 0.92])),
+            ("init_quat removed", lambda: delattr(can, "init_quat")),
+            ("a property of the class", lambda: setattr(Fresh, "horizontal_radius",
+                                                        property(lambda self: 0.1))),
+            ("the property removed", lambda: delattr(Fresh, "horizontal_radius")),
+            ("a class attribute where the instance has none",
+             lambda: (delattr(bread, "top_offset"),
+                      setattr(Fresh, "top_offset", np.array([0.0, 0.0, 0.35])))),
+            ("the class attribute changed", lambda: setattr(Fresh, "top_offset",
+                                                            np.array([0.0, 0.0, -0.1]))),
+            ("another class", lambda: setattr(bread, "__class__", Other)),
+            ("another dict", lambda: setattr(cereal, "__dict__",
+                                             dict(cereal.__dict__, horizontal_radius=0.08))),
+            ("another name", lambda: setattr(can, "name", "Tin")),
+            ("a property of a base class", lambda: setattr(
+                robosuite_setups.PlainObject, "bottom_offset",
+                property(lambda self: np.array([0.0, 0.0, -0.15])))),
+            ("the base class's property removed",
+             lambda: delattr(robosuite_setups.PlainObject, "bottom_offset")),
+        ]
+        try:
+            for label, change in steps:
+                change()
+                differences, _ = comparison.run(30)
+                self.assertEqual(differences, [], label)
+        finally:
+            if "bottom_offset" in vars(robosuite_setups.PlainObject):
+                del robosuite_setups.PlainObject.bottom_offset
+
+    def test_each_result_has_arrays_of_its_own(self):
+        # Quaternions kept keep their values; what a caller does to one it dropped (its values,
+        # shape, flags or dtype, a weak reference to it) shows in no later result.
+        comparison = Comparison(SETUPS["pick_place"], self.theirs, seed=5)
+        kept, weak = [], []
+        changes = [lambda q: q.__setitem__(slice(None), 7.0),
+                   lambda q: setattr(q, "shape", (2, 2)),
+                   lambda q: q.setflags(write=False),
+                   lambda q: setattr(q, "dtype", np.int64),
+                   lambda q: weak.append(weakref.ref(q))]
+        for call in range(400):
+            mine, theirs = outcome(comparison.mine, {}), outcome(comparison.theirs, {})
+            self.assertIsNone(describe_difference(mine, theirs), "call %d" % call)
+            for _, quat, _ in mine[0].values():
+                self.assertEqual((quat.shape, quat.flags.writeable, quat.flags.owndata,
+                                  quat.base, weakref.getweakrefcount(quat)),
+                                 ((4,), True, True, None, 0), "call %d" % call)
+            if call % 4 == 0:
+                kept.append((mine, theirs))
+            elif call % 4 == 1:
+                for i, (_, quat, _) in enumerate(mine[0].values()):
+                    changes[(call + i) % len(changes)](quat)
+        for mine, theirs in kept:
+            self.assertIsNone(describe_difference(mine, theirs))
+        quats = [id(quat) for mine, _ in kept for _, quat, _ in mine[0].values()]
+        self.assertEqual(len(set(quats)), len(quats))
 
 
 class AgainstRobosuite(AgainstReference):
@@ -462,6 +542,75 @@ class Behaviour(unittest.TestCase):
                 self.assertEqual(mine[name][0], tuple(float(v) for v in theirs_placed[name][0]),
                                  "later samplers see the other sampler's placement as it "
                                  "returned it")
+
+    def test_samplers_changed_during_a_call(self):
+        # The composite walks its samplers and sample_args as zip() over their values()
+        # iterators: what a sampler changes in them during the call shows, or raises, alike.
+        def replace(dicts, key, value):
+            return lambda c, api, rng, objects: getattr(c, dicts).__setitem__(key, value(
+                api, rng, objects))
+
+        def later(api, rng, objects):
+            return api.UniformRandomSampler("Later", [objects[2]], [-0.2, 0.2], [-0.2, 0.2],
+                                            reference_pos=(0, 0, 0.8), rng=rng)
+
+        actions = {
+            "nothing": lambda c, api, rng, objects: None,
+            "a sampler moved to the end": lambda c, *_: c.samplers.move_to_end("A"),
+            "sample_args moved to the end": lambda c, *_: c.sample_args.move_to_end("A"),
+            "a sampler added": replace("samplers", "X", later),
+            "a sampler replaced": replace("samplers", "B", later),
+            "sample_args replaced": replace("sample_args", "B", lambda *_: {"on_top": False}),
+            "a sampler removed": lambda c, *_: c.samplers.pop("B"),
+            "sample_args removed": lambda c, *_: c.sample_args.pop("A"),
+            "a sampler removed behind the OrderedDict's back":
+                lambda c, *_: dict.pop(c.samplers, "B"),
+            "cleared and refilled": lambda c, *_: c.sample_args.update(
+                (c.sample_args.clear(), dict(A=None, M=None, B=None))[1]),
+        }
+
+        class Meddler:
+            """A sampler that changes its composite when it samples."""
+
+            def __init__(self, composite, action, api, rng, objects):
+                self.name, self.mujoco_objects = "M", []
+                self.call = lambda: action(composite, api, rng, objects)
+
+            def sample(self, fixtures=None, reference=None, on_top=True):
+                self.call()
+                return {}
+
+        def build(api, rng, objects, action, mapping=None):
+            composite = api.SequentialCompositeSampler("C")
+            composite.append_sampler(api.UniformRandomSampler(
+                "A", [objects[0]], [-0.1, 0.1], [-0.1, 0.1], reference_pos=(0, 0, 0.8), rng=rng))
+            composite.append_sampler(Meddler(composite, action, api, rng, objects))
+            composite.append_sampler(api.UniformRandomSampler(
+                "B", [objects[1]], [-0.1, 0.1], [-0.1, 0.1], reference_pos=(0, 0, 0.8), rng=rng))
+            if mapping is not None:
+                mapping(composite)
+            return composite
+
+        def values_of_its_own(composite):
+            samplers = list(composite.samplers.values())
+            composite.samplers.values = lambda: reversed(samplers)
+
+        cases = [(label, action, None) for label, action in actions.items()]
+        cases += [("plain dicts", actions["nothing"], lambda c: (
+            setattr(c, "samplers", dict(c.samplers)),
+            setattr(c, "sample_args", dict(c.sample_args)))),
+                  ("an OrderedDict with values() of its own", actions["nothing"],
+                   values_of_its_own)]
+        self.assertTrue(ours._ordered_dict_walks())
+        for theirs in [REFERENCE] + ([self.robosuite] if self.robosuite is not None else []):
+            for label, action, mapping in cases:
+                objects = [plain("a"), plain("b"), plain("later")]
+                rng, their_rng = np.random.default_rng(6), np.random.default_rng(6)
+                mine = outcome(build(ours, rng, objects, action, mapping), {})
+                other = outcome(build(theirs, their_rng, objects, action, mapping), {})
+                self.assertIsNone(describe_difference(mine, other), label)
+                self.assertTrue(same_state(rng.bit_generator.state,
+                                           their_rng.bit_generator.state), label)
 
     def test_randomization_error_is_robosuites_when_robosuite_came_first(self):
         self.assertIs(ours.RandomizationError, RandomizationError)

@@ -50,6 +50,41 @@ UniformSamplerParams rectangle(double half) {
   return p;
 }
 
+TEST(UniformSource, OrientationsLeftOutChangeNothingElse) {
+  UniformSamplerParams p = rectangle(0.1);
+  p.rotation = RotationSpec::range(-0.5, 0.5);
+  p.checkInputs = false;
+  const std::vector<ObjectPtr> objects = {makeSphere("a", 0.04), makeSphere("b", 0.04),
+                                          makeSphere("c", 0.04)};
+  const UniformRandomSampler with("S", p, objects);
+  p.orientations = false;
+  const UniformRandomSampler without("S", p, objects);
+  for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+    TestScene a(seed);
+    RecordingSource sourceA(sceneEngine(seed, 0));
+    a.context.setUniformSource(&sourceA);
+    ASSERT_TRUE(with.sample(a.context, Reference::byDefault(), true));
+    TestScene b(seed);
+    RecordingSource sourceB(sceneEngine(seed, 0));
+    b.context.setUniformSource(&sourceB);
+    ASSERT_TRUE(without.sample(b.context, Reference::byDefault(), true));
+    EXPECT_EQ(sourceB.draws, sourceA.draws);
+    EXPECT_EQ(sourceB.angles, sourceA.angles);
+    ASSERT_EQ(b.context.placements().size(), a.context.placements().size());
+    for (std::size_t i = 0; i < a.context.placements().size(); ++i) {
+      const ObjectPlacement& pa = a.context.placements()[i];
+      const ObjectPlacement& pb = b.context.placements()[i];
+      EXPECT_EQ(pb.position, pa.position);
+      EXPECT_EQ(pb.attempts, pa.attempts);
+      // Turned about z by the reported angle with them, the identity without.
+      EXPECT_NEAR(pa.orientation.angularDistance(Eigen::Quaterniond(
+                      Eigen::AngleAxisd(sourceA.angles[i], Eigen::Vector3d::UnitZ()))),
+                  0.0, 1e-12);
+      EXPECT_EQ(pb.orientation.coeffs(), Eigen::Quaterniond::Identity().coeffs());
+    }
+  }
+}
+
 TEST(UniformSource, DrawsWhatTheEngineWouldInRobosuitesOrder) {
   UniformSamplerParams p = rectangle(0.1);
   p.rotation = RotationSpec::range(-0.5, 0.5);

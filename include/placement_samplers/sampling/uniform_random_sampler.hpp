@@ -62,6 +62,10 @@ struct UniformSamplerParams {
   /// shrink, not finite, beyond limits::kCoordinate); the caller's UniformSource checks each
   /// draw as numpy's Generator.uniform does (the Python module). Rectangular rejection only.
   bool checkInputs = true;
+  /// false: a placement's orientation is not computed where no test needs it (it stays the
+  /// identity); for a caller that computes its own from the angles its UniformSource is told
+  /// (the Python module). Positions, draws and attempts are the same.
+  bool orientations = true;
 };
 
 /// robosuite's UniformRandomSampler: rejection sampling of x and y in ranges around a
