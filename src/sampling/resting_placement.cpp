@@ -8,7 +8,8 @@
 namespace placement_samplers {
 
 bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& entry,
-                                           const Eigen::Vector3d& base, bool onTop) const {
+                                           const Eigen::Vector3d& base, bool onTop,
+                                           PlacementRelations* relations) const {
   const ObjectModel& object = *entry.object;
   Engine& engine = engineOf(context);
   const std::uint32_t limit = attemptLimit(context);
@@ -90,6 +91,12 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
       ++outside;
       continue;
     }
+    // After the region and keep-out tests, with the pose's radius (resting: stable takes
+    // position relations only: the orientation stays the sampler's).
+    if (relations != nullptr &&
+        !relations->holds(candidate.position.head<2>(), posed.horizontalRadius)) {
+      continue;
+    }
     if (check) {
       const std::ptrdiff_t blocker = context.firstCollision(candidate);
       if (blocker != CollisionChecker::kNone) {
@@ -104,7 +111,7 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
     context.addPlacement(name(), candidate, attempt, params_.hides, pose.restPose);
     return true;
   }
-  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside, relations);
 }
 
 }  // namespace placement_samplers
