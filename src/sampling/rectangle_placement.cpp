@@ -136,6 +136,9 @@ bool UniformRandomSampler::placeInRectangle(SampleContext& context, const Entry&
     if constexpr (kRelated) {
       // The relations after the region; the fcl modes' rotation after them (face needs the
       // position).
+      if (attempt == kRelationProbeAttempts && !relationsPossible(context, object, *relations)) {
+        return false;
+      }
       if (!relations->holds(candidate.position.head<2>(), object.horizontalRadius)) {
         continue;
       }

@@ -77,6 +77,7 @@ void UniformRandomSampler::bindRelations(Entry& entry) const {
                           " has no heading (its +x axis is vertical in its initial orientation)");
       }
       turn = static_cast<int>(i);
+      entry.heading0 = headingOf(object.initOrientation);
     }
     entry.relations.push_back(static_cast<std::uint16_t>(i));
   }
@@ -86,6 +87,15 @@ bool UniformRandomSampler::resolveRelations(SampleContext& context, const Entry&
                                             const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                                             PlacementRelations& out) const {
   const ObjectModel& object = *entry.object;
+  out.boxLo = lo;
+  out.boxHi = hi;
+  // Under resting: stable the poses' radii differ: the test must fail for all of them.
+  out.leastRadius = object.horizontalRadius;
+  out.mostRadius = object.horizontalRadius;
+  for (const Entry& pose : entry.poses) {
+    out.leastRadius = std::min(out.leastRadius, pose.object->horizontalRadius);
+    out.mostRadius = std::max(out.mostRadius, pose.object->horizontalRadius);
+  }
   const auto failWith = [&](std::size_t i, const std::string& why) {
     return fail(context, &object, 0,
                 "could not place object " + quoteText(object.name) + " with sampler " +
@@ -99,23 +109,11 @@ bool UniformRandomSampler::resolveRelations(SampleContext& context, const Entry&
                       "cannot hold: its target is neither a fixture nor an object placed "
                       "before it");
     }
-    const RelationTarget t = relationTarget(*target);
+    // The target's heading (an atan2) only for align_with.
+    const RelationTarget t = relationTarget(*target, r.kind == Relation::Kind::AlignWith);
     if (r.isPosition()) {
       PositionTest& test = out.position[out.count++];
       test = PositionTest(r, i, t);
-      // Under resting: stable the poses' radii differ: the test must fail for all of them.
-      double least = object.horizontalRadius;
-      double most = object.horizontalRadius;
-      for (const Entry& pose : entry.poses) {
-        least = std::min(least, pose.object->horizontalRadius);
-        most = std::max(most, pose.object->horizontalRadius);
-      }
-      if (lo.x() <= hi.x()) {
-        const std::string why = infeasibleReason(test, least, most, lo, hi);
-        if (!why.empty()) {
-          return failWith(i, "cannot hold anywhere: " + why);
-        }
-      }
       continue;
     }
     out.turns = true;
@@ -125,7 +123,7 @@ bool UniformRandomSampler::resolveRelations(SampleContext& context, const Entry&
     turn.tolerance = r.tolerance;
     turn.period = r.period;
     turn.target = t.centre;
-    turn.h0 = headingOf(object.initOrientation);
+    turn.h0 = entry.heading0;
     turn.centre = t.heading - turn.h0;
     if (r.kind != Relation::Kind::AlignWith) {
       continue;
@@ -150,6 +148,26 @@ bool UniformRandomSampler::resolveRelations(SampleContext& context, const Entry&
       why << "cannot hold: no turn of rotation [" << low << ", " << high
           << "] rad gives the target's yaw " << t.heading << " rad within the tolerance";
       return failWith(i, why.str());
+    }
+  }
+  return true;
+}
+
+bool UniformRandomSampler::relationsPossible(SampleContext& context, const ObjectModel& object,
+                                             const PlacementRelations& relations) const {
+  if (relations.boxLo.x() > relations.boxHi.x()) {
+    return true;
+  }
+  for (std::size_t k = 0; k < relations.count; ++k) {
+    const PositionTest& test = relations.position[k];
+    const std::string why = infeasibleReason(test, relations.leastRadius, relations.mostRadius,
+                                             relations.boxLo, relations.boxHi);
+    if (!why.empty()) {
+      return fail(context, &object, kRelationProbeAttempts - 1,
+                  "could not place object " + quoteText(object.name) + " with sampler " +
+                      quoteText(name()) + ": " +
+                      relationLabel(params_.relations[test.index], test.index) +
+                      " cannot hold anywhere: " + why);
     }
   }
   return true;

@@ -2,6 +2,7 @@
 #include "placement_samplers/sampling/relations.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <sstream>
 
@@ -74,7 +75,7 @@ std::string relationLabel(const Relation& relation, std::size_t index) {
 
 double headingOf(const Eigen::Quaterniond& orientation) {
   const Eigen::Vector3d x = orientation * Eigen::Vector3d::UnitX();
-  if (std::hypot(x.x(), x.y()) < 1e-9) {
+  if (std::sqrt(x.x() * x.x() + x.y() * x.y()) < 1e-9) {
     return 0.0;
   }
   return std::atan2(x.y(), x.x());
@@ -85,12 +86,17 @@ double angleApart(double a, double b, double period) {
   return std::min(d, period - d);
 }
 
-RelationTarget relationTarget(const PlacedEntry& entry) {
+RelationTarget relationTarget(const PlacedEntry& entry, bool withHeading) {
   RelationTarget t;
   t.centre = entry.position.head<2>();
-  t.heading = headingOf(entry.orientation);
-  t.cosHeading = std::cos(t.heading);
-  t.sinHeading = std::sin(t.heading);
+  // The heading's cosine and sine straight from the +x axis: no trigonometry but atan2.
+  const Eigen::Vector3d x = entry.orientation * Eigen::Vector3d::UnitX();
+  const double h = std::sqrt(x.x() * x.x() + x.y() * x.y());
+  if (h >= 1e-9) {
+    t.cosHeading = x.x() / h;
+    t.sinHeading = x.y() / h;
+    t.heading = withHeading ? std::atan2(x.y(), x.x()) : 0.0;
+  }
   t.radius = entry.object->horizontalRadius;
   return t;
 }
@@ -102,27 +108,48 @@ PositionTest::PositionTest(const Relation& relation, std::size_t i, const Relati
       low(relation.minGap + target.radius),
       high(relation.kind == Relation::Kind::AwayFrom ? std::numeric_limits<double>::infinity()
                                                      : relation.maxGap + target.radius),
+      targetRadius(target.radius),
       side(relation.side),
-      index(static_cast<std::uint16_t>(i)),
-      targetRadius(target.radius) {}
+      index(static_cast<std::uint16_t>(i)) {}
+
+bool relationHolds(const Relation& relation, const RelationTarget& target, const Eigen::Vector2d& p,
+                   double radius, const Eigen::Quaterniond& orientation) {
+  if (relation.isPosition()) {
+    return PositionTest(relation, 0, target).holds(p, radius);
+  }
+  double want = target.heading;
+  double period = relation.period;
+  if (relation.kind == Relation::Kind::Face) {
+    const Eigen::Vector2d d = target.centre - p;
+    want = std::atan2(d.y(), d.x());
+    period = 2 * M_PI;
+  }
+  return angleApart(headingOf(orientation), want, period) <=
+         relation.tolerance + kRelationAngleSlack;
+}
 
 namespace {
 
-using Polygon = std::vector<Eigen::Vector2d>;
+/// A convex polygon of at most 8 vertices (a box cut by two half-planes has at most 6), on the
+/// stack: the test runs once per object and scene.
+struct Polygon {
+  std::array<Eigen::Vector2d, 8> v;
+  std::size_t n = 0;
+};
 
 /// The part of @p poly where n . p >= 0 (Sutherland-Hodgman, one edge).
 Polygon clip(const Polygon& poly, const Eigen::Vector2d& n) {
   Polygon out;
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Eigen::Vector2d& a = poly[i];
-    const Eigen::Vector2d& b = poly[(i + 1) % poly.size()];
+  for (std::size_t i = 0; i < poly.n; ++i) {
+    const Eigen::Vector2d& a = poly.v[i];
+    const Eigen::Vector2d& b = poly.v[(i + 1) % poly.n];
     const double da = n.dot(a);
     const double db = n.dot(b);
     if (da >= 0.0) {
-      out.push_back(a);
+      out.v[out.n++] = a;
     }
     if ((da >= 0.0) != (db >= 0.0)) {
-      out.push_back(a + (b - a) * (da / (da - db)));
+      out.v[out.n++] = a + (b - a) * (da / (da - db));
     }
   }
   return out;
@@ -140,9 +167,12 @@ double segmentDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 std::string infeasibleReason(const PositionTest& test, double least, double most,
                              const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
   // The box relative to the target's centre, cut to the side's sector (u . d >= |v . d|).
-  Polygon poly{
-      Eigen::Vector2d(lo.x(), lo.y()) - test.centre, Eigen::Vector2d(hi.x(), lo.y()) - test.centre,
-      Eigen::Vector2d(hi.x(), hi.y()) - test.centre, Eigen::Vector2d(lo.x(), hi.y()) - test.centre};
+  Polygon poly;
+  poly.v[0] = Eigen::Vector2d(lo.x(), lo.y()) - test.centre;
+  poly.v[1] = Eigen::Vector2d(hi.x(), lo.y()) - test.centre;
+  poly.v[2] = Eigen::Vector2d(hi.x(), hi.y()) - test.centre;
+  poly.v[3] = Eigen::Vector2d(lo.x(), hi.y()) - test.centre;
+  poly.n = 4;
   const Eigen::Vector2d front(test.cosHeading, test.sinHeading);
   const Eigen::Vector2d left(-test.sinHeading, test.cosHeading);
   Eigen::Vector2d u = Eigen::Vector2d::Zero();
@@ -166,18 +196,30 @@ std::string infeasibleReason(const PositionTest& test, double least, double most
   if (test.side != Relation::Side::Any) {
     const Eigen::Vector2d v(-u.y(), u.x());
     poly = clip(clip(poly, u - v), u + v);
-    if (poly.empty()) {
+    if (poly.n == 0) {
       return std::string("no position of its region is on the ") + relationSideName(test.side) +
              " of the target";
     }
   }
-  double far = 0.0;
+  // Squared distances first (no root): most relations are feasible at a glance.
+  const double lowR = test.low + least;
+  const double highR = test.high + most;
+  double far2 = 0.0;
+  bool reached = false;  // some vertex within highR
+  for (std::size_t i = 0; i < poly.n; ++i) {
+    const double d2 = poly.v[i].squaredNorm();
+    far2 = std::max(far2, d2);
+    reached = reached || d2 <= (highR + kSlack) * (highR + kSlack);
+  }
+  const bool tooNear = lowR - kSlack > 0.0 && far2 < (lowR - kSlack) * (lowR - kSlack);
+  if (!tooNear && reached) {
+    return "";
+  }
   double near = std::numeric_limits<double>::infinity();
   bool inside = true;
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Eigen::Vector2d& a = poly[i];
-    const Eigen::Vector2d& b = poly[(i + 1) % poly.size()];
-    far = std::max(far, a.norm());
+  for (std::size_t i = 0; i < poly.n; ++i) {
+    const Eigen::Vector2d& a = poly.v[i];
+    const Eigen::Vector2d& b = poly.v[(i + 1) % poly.n];
     near = std::min(near, segmentDistance(a, b));
     // Counter-clockwise polygon: the origin is inside when it is left of every edge.
     inside = inside && (a.x() * b.y() - a.y() * b.x()) >= 0.0;
@@ -185,8 +227,10 @@ std::string infeasibleReason(const PositionTest& test, double least, double most
   if (inside) {
     near = 0.0;
   }
-  const double lowR = test.low + least;
-  const double highR = test.high + most;
+  const double far = std::sqrt(far2);
+  if (!tooNear && near <= highR + kSlack) {
+    return "";
+  }
   std::ostringstream out;
   if (far < lowR - kSlack) {
     out << "its region's positions" << (test.side != Relation::Side::Any ? " on that side" : "")
@@ -194,13 +238,10 @@ std::string infeasibleReason(const PositionTest& test, double least, double most
         << lowR << " m";
     return out.str();
   }
-  if (near > highR + kSlack) {
-    out << "its region's positions" << (test.side != Relation::Side::Any ? " on that side" : "")
-        << " are at least " << near << " m from the target's centre, the relation needs at most "
-        << highR << " m";
-    return out.str();
-  }
-  return "";
+  out << "its region's positions" << (test.side != Relation::Side::Any ? " on that side" : "")
+      << " are at least " << near << " m from the target's centre, the relation needs at most "
+      << highR << " m";
+  return out.str();
 }
 
 double alignedLength(const RotationTest& t, double low, double high) {

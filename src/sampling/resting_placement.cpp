@@ -48,6 +48,10 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
     }
+    if (relations != nullptr && attempt == kRelationProbeAttempts &&
+        !relationsPossible(context, object, *relations)) {
+      return false;
+    }
     // The pose by probability, then the region's draws with the pose's numbers.
     const double u = uniform01(engine);
     const std::size_t k =

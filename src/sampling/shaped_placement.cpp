@@ -98,6 +98,10 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
     }
+    if (relations != nullptr && attempt == kRelationProbeAttempts &&
+        !relationsPossible(context, object, *relations)) {
+      return false;
+    }
     const Eigen::Vector2d local = entry.draw->draw(engine);
     candidate.position.head<2>() = local + offset;
     if (orientFirst && relations == nullptr) {

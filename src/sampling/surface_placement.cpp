@@ -217,6 +217,10 @@ bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& e
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
     }
+    if (relations != nullptr && attempt == kRelationProbeAttempts &&
+        !relationsPossible(context, object, *relations)) {
+      return false;
+    }
     std::size_t surface = 0;
     const Eigen::Vector2d p = draw->draw(engine, surface);
     candidate.position = Eigen::Vector3d(p.x(), p.y(), draw->z(surface) + lift);

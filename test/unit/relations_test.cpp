@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "placement_samplers/output/scene_json.hpp"
+#include "placement_samplers/sampling/relation_links.hpp"
 #include "placement_samplers/sampling/relations.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
@@ -164,6 +165,34 @@ TEST(Relations, TableSettingHoldsInEveryScene) {
                                  : v.objects[0].reasons[0].message);
   }
   EXPECT_GT(placed, 9900u);
+}
+
+/// rviz's lines: one per object and relation, satisfied in a sampled scene; a fork moved to the
+/// plate's other side breaks its next_to and its face (the chair is in another direction).
+TEST(Relations, LinksForDisplay) {
+  const auto config = buildSceneConfig(loadYamlFile(kSource + "/config/relations.yaml"));
+  Scenes s = scenes(config, 1, 7);
+  const PreparedRequest request = s.generator->prepare(SampleRequest());
+  ASSERT_TRUE(s.results[0].success);
+  std::vector<RelationLink> links = relationLinks(request, s.results[0]);
+  // plate: next_to chair1, face; fork, knife: next_to plate, face; glass: next_to plate,
+  // away_from knife, face.
+  ASSERT_EQ(links.size(), 9u);
+  for (const RelationLink& l : links) {
+    EXPECT_TRUE(l.satisfied) << l.object << " " << l.index;
+  }
+  EXPECT_EQ(links[2].object, "fork");
+  EXPECT_EQ(links[2].target, "plate");
+  EXPECT_EQ(links[2].from, s.results[0].placements[1].position);
+  EXPECT_EQ(links[2].to, s.results[0].placements[0].position);
+  SceneResult moved = s.results[0];
+  const Eigen::Vector3d plate = moved.placements[0].position;
+  moved.placements[1].position.head<2>() =
+      2 * plate.head<2>() - moved.placements[1].position.head<2>();
+  links = relationLinks(request, moved);
+  for (const RelationLink& l : links) {
+    EXPECT_EQ(l.satisfied, l.object != "fork") << l.object << " " << l.index;
+  }
 }
 
 /// A uniform sampler with the relation and the same one without, its placements filtered by

@@ -39,6 +39,10 @@ struct Relation {
 
 /// Relations a sampler may have (each object is tested against all that apply to it).
 constexpr std::size_t kMaxRelations = 16;
+/// The attempt before which a position relation that cannot hold anywhere in the region's box
+/// fails the object (infeasibleReason()): late enough that a relation that holds somewhere
+/// usually never pays for the test, early enough to fail at once.
+constexpr std::uint32_t kRelationProbeAttempts = 64;
 
 /// "next_to", "away_from", "align_with" or "face".
 const char* relationKindName(Relation::Kind kind);
@@ -61,7 +65,9 @@ struct RelationTarget {
   double heading = 0.0;  ///< [rad]
   double radius = 0.0;   ///< [m]
 };
-RelationTarget relationTarget(const PlacedEntry& entry);
+/// @p withHeading false leaves `heading` 0 (its cosine and sine are set): the position tests do
+/// not need it.
+RelationTarget relationTarget(const PlacedEntry& entry, bool withHeading = true);
 
 /// True when @p local (a point in the target's frame, relative to its centre) is in @p side's
 /// sector; the sector's edges belong to it.
@@ -84,13 +90,16 @@ inline bool inSide(Relation::Side side, double x, double y) {
 /// One position relation (next_to, away_from) against a resolved target. Sampling and
 /// validation decide with the same holds(), bit for bit.
 struct PositionTest {
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  double cosHeading = 1.0;
-  double sinHeading = 0.0;
-  double low = 0.0;   ///< minimum gap plus the target's radius [m]
-  double high = 0.0;  ///< maximum gap plus the target's radius (inf: none) [m]
-  Relation::Side side = Relation::Side::Any;
-  std::uint16_t index = 0;  ///< in the sampler's relations
+  // No default member initialisers: an object's array of them is left unset but for its first
+  // `count` (PlacementRelations).
+  Eigen::Vector2d centre;
+  double cosHeading;
+  double sinHeading;
+  double low;           ///< minimum gap plus the target's radius [m]
+  double high;          ///< maximum gap plus the target's radius (inf: none) [m]
+  double targetRadius;  ///< [m]
+  Relation::Side side;
+  std::uint16_t index;  ///< in the sampler's relations
 
   PositionTest() = default;
   PositionTest(const Relation& relation, std::size_t index, const RelationTarget& target);
@@ -111,7 +120,6 @@ struct PositionTest {
   double gap(const Eigen::Vector2d& p, double radius) const {
     return (p - centre).norm() - radius - targetRadius;
   }
-  double targetRadius = 0.0;  ///< [m]
 };
 
 /// Why no centre in the box @p lo .. @p hi (world, [m]) can satisfy @p test for an object of
@@ -119,6 +127,16 @@ struct PositionTest {
 /// inside the box are not looked at: it only fails what cannot hold).
 std::string infeasibleReason(const PositionTest& test, double least, double most,
                              const Eigen::Vector2d& lo, const Eigen::Vector2d& hi);
+
+/// Rounding a sampled yaw may carry through its quaternion: the slack of the angle tests of
+/// align_with and face outside sampling (validation, display) [rad].
+constexpr double kRelationAngleSlack = 1e-9;
+
+/// True when @p relation holds for an object of horizontal radius @p radius [m] at @p p with
+/// @p orientation, against @p target: PositionTest::holds() for next_to and away_from, the yaw
+/// within the tolerance (plus kRelationAngleSlack) for align_with and face.
+bool relationHolds(const Relation& relation, const RelationTarget& target, const Eigen::Vector2d& p,
+                   double radius, const Eigen::Quaterniond& orientation);
 
 /// The allowed turns of a rotation relation for one placement: the turn a about the sampler's
 /// z axis gives the object the heading a + h0 (h0: the heading of its initial orientation).
@@ -147,6 +165,11 @@ struct PlacementRelations {
   bool turns = false;     ///< @ref turn sets the yaw
   RotationTest turn;
   double alignedLength = 0.0;  ///< align_with: the allowed turns' length [rad]
+  /// The box the centres are drawn from (world) for infeasibleReason(); lo > hi: not known.
+  Eigen::Vector2d boxLo = Eigen::Vector2d::Ones();
+  Eigen::Vector2d boxHi = Eigen::Vector2d::Zero();
+  double leastRadius = 0.0;  ///< the object's horizontal radius (its smallest pose's) [m]
+  double mostRadius = 0.0;   ///< and largest [m]
 
   /// True when every position relation holds; counts the first that does not.
   bool holds(const Eigen::Vector2d& p, double radius) {

@@ -159,6 +159,7 @@ class UniformRandomSampler : public PlacementSampler {
     std::string problem;  ///< why not
     /// The indices of the relations that apply to the object (a pose entry: its object's).
     std::vector<std::uint16_t> relations;
+    double heading0 = 0.0;  ///< the heading of the object's initial orientation [rad]
   };
 
   Eigen::Quaterniond sampleOrientation(Engine& engine, const ObjectModel& object) const;
@@ -187,12 +188,15 @@ class UniformRandomSampler : public PlacementSampler {
   /// The relations that apply to @p entry's object (addObjects()).
   /// @throw ConfigError when two of them set its yaw, or it has no heading to turn
   void bindRelations(Entry& entry) const;
-  /// Resolves @p entry's relations in this scene for @p object (its posed model under resting:
-  /// stable: only the radius differs); the centres are drawn from the box @p lo .. @p hi [m]
-  /// (world; lo > hi: not known). False, after fail(), when a target is not in the scene or a
-  /// relation cannot hold there.
+  /// Resolves @p entry's relations in this scene; the centres are drawn from the box @p lo ..
+  /// @p hi [m] (world; lo > hi: not known). False, after fail(), when a target is not in the
+  /// scene or a rotation relation cannot hold.
   bool resolveRelations(SampleContext& context, const Entry& entry, const Eigen::Vector2d& lo,
                         const Eigen::Vector2d& hi, PlacementRelations& out) const;
+  /// At attempt kRelationProbeAttempts of a placement loop: false, after fail(), when a position
+  /// relation cannot hold anywhere in @p relations' box.
+  bool relationsPossible(SampleContext& context, const ObjectModel& object,
+                         const PlacementRelations& relations) const;
   /// The orientation of @p object at @p p: the sampler's rotation draw, or the one of a
   /// rotation relation (README, "Relations").
   Eigen::Quaterniond relatedOrientation(Engine& engine, const ObjectModel& object,

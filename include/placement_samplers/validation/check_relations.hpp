@@ -19,10 +19,6 @@ struct RelationMiss {
   std::string message;  ///< the whole sentence
 };
 
-/// Rounding a sampled yaw may carry through its quaternion: the validator's slack on the
-/// angles of align_with and face [rad].
-constexpr double kRelationAngleSlack = 1e-9;
-
 /// The relations of @p sampler that apply to @p object and do not hold for @p candidate (the
 /// object's pose; its `object` the model in its resting pose, whose radius counts), against
 /// the fixtures and objects already in @p context. Position relations are decided by the very
