@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "placement_samplers/collision/make_collision_checker.hpp"
 #include "placement_samplers/output/scene_json.hpp"
 #include "placement_samplers/sampling/relation_links.hpp"
 #include "placement_samplers/sampling/relations.hpp"
@@ -165,6 +166,56 @@ TEST(Relations, TableSettingHoldsInEveryScene) {
                                  : v.objects[0].reasons[0].message);
   }
   EXPECT_GT(placed, 9900u);
+}
+
+/// Relations on a surface region, under resting: stable, in a disk with a keep-out zone, with a
+/// target of an earlier sampler and of the same sampler, in every collision mode: every placed
+/// scene validates (positions by sampling's own test, angles within their slack).
+TEST(Relations, HoldOnEveryRegionKindInEveryMode) {
+  const auto config = buildFromYaml(R"(
+objects:
+  cube: {shape: box, size: [0.02, 0.02, 0.02]}
+  can: {shape: cylinder, radius: 0.03, length: 0.1}
+  plate: {shape: cylinder, radius: 0.1, length: 0.02}
+  mark: {shape: box, size: [0.01, 0.01, 0.01]}
+  slab: {shape: box, size: [1.0, 1.0, 0.1]}
+  brick: {shape: box, size: [0.08, 0.04, 0.02]}
+fixtures:
+  - {name: post, object: mark, position: [0.5, 0.0, 0.8],
+     orientation: [0.0, 0.0, 0.7071067811865476, 0.7071067811865476]}
+  - {name: board, object: slab, position: [0.0, 2.0, 0.05]}
+samplers:
+  - {name: P, objects: [plate], region: {shape: surface, of: board},
+     relations: [{away_from: post, distance: 1.0}, {face: post, tolerance: 0.3}]}
+  - {name: R, objects: [brick, cube], resting: stable, x_range: [-0.6, 0.6], y_range: [1.4, 2.6],
+     z_offset: 0.2, relations: [{next_to: plate, side: front, distance: [0.0, 0.1]},
+                                {away_from: brick, distance: 0.02, objects: [cube]}]}
+  - {name: S, objects: [can], region: {shape: disk, center: [0, 2], radius: 0.45},
+     keep_out: [{shape: disk, center: [0, 2.1], radius: 0.05, frame: world}], z_offset: 0.2,
+     relations: [{away_from: plate, distance: 0.05}, {align_with: post, tolerance: 0.2}]}
+)");
+  for (const CollisionMode mode :
+       {CollisionMode::Radius, CollisionMode::Fcl, CollisionMode::RadiusAndFcl}) {
+    auto generator = std::make_shared<const SceneGenerator>(config);
+    SampleRequest request;
+    request.collisionCheck = mode;
+    const PreparedRequest prepared = generator->prepare(request);
+    const std::vector<SceneResult> results = generator->sampleScenes(prepared, 9, 1000, 1);
+    std::size_t placed = 0;
+    for (const SceneResult& r : results) {
+      if (!r.success) {
+        continue;
+      }
+      ++placed;
+      std::vector<GivenPose> poses;
+      for (const ObjectPlacement& p : r.placements) {
+        poses.push_back({std::string(p.name), p.position, p.orientation});
+      }
+      const SceneVerdict v = validateScene(*generator, prepared, poses);
+      ASSERT_TRUE(v.valid) << collisionModeName(mode) << " scene " << r.index;
+    }
+    EXPECT_GT(placed, 900u) << collisionModeName(mode) << ": " << results[0].message;
+  }
 }
 
 /// rviz's lines: one per object and relation, satisfied in a sampled scene; a fork moved to the
