@@ -134,17 +134,20 @@ bool UniformRandomSampler::placeInRectangle(SampleContext& context, const Entry&
     const double y = draws(entry.y[0], entry.y[1], UniformSource::Draw::Y) + base.y();
     candidate.position.head<2>() = Eigen::Vector2d(x, y);
     if constexpr (kRelated) {
-      // The relations after the region; the fcl modes' rotation after them (face needs the
-      // position).
+      // The relations after the region's draws; after the accepted attempt the turn (face
+      // needs the position), but before the test in the fcl modes, whose exact gaps need it.
       if (attempt == kRelationProbeAttempts && !relationsPossible(context, object, *relations)) {
         return false;
       }
-      if (!relations->holds(candidate.position.head<2>(), object.horizontalRadius)) {
-        continue;
-      }
-      if (orientFirst) {
+      if (relations->exact) {
+        // The exact gaps need the orientation: drawn first (face: towards the target from here).
         candidate.orientation =
             relatedOrientation(draws.engine, object, candidate.position.head<2>(), relations);
+        if (!relationsHold(context, *relations, candidate)) {
+          continue;
+        }
+      } else if (!relations->holds(candidate.position.head<2>(), object.horizontalRadius)) {
+        continue;
       }
     } else if (orientFirst) {
       angle = drawAngle(draws);
@@ -161,7 +164,7 @@ bool UniformRandomSampler::placeInRectangle(SampleContext& context, const Entry&
       }
     }
     if constexpr (kRelated) {
-      if (!orientFirst) {
+      if (!relations->exact) {
         candidate.orientation =
             relatedOrientation(draws.engine, object, candidate.position.head<2>(), relations);
       }

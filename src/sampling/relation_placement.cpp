@@ -1,6 +1,7 @@
 // A uniform sampler's relations (README, "Relations"): which apply to each object, their
 // targets in a scene, the fast failure of one that cannot hold, the turn of a rotation one.
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "placement_samplers/errors.hpp"
@@ -87,6 +88,7 @@ bool UniformRandomSampler::resolveRelations(SampleContext& context, const Entry&
                                             const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                                             PlacementRelations& out) const {
   const ObjectModel& object = *entry.object;
+  out.exact = context.needsOrientation();
   out.boxLo = lo;
   out.boxHi = hi;
   // Under resting: stable the poses' radii differ: the test must fail for all of them.
@@ -114,6 +116,7 @@ bool UniformRandomSampler::resolveRelations(SampleContext& context, const Entry&
     if (r.isPosition()) {
       PositionTest& test = out.position[out.count++];
       test = PositionTest(r, i, t);
+      test.entry = target - context.entries().data();
       continue;
     }
     out.turns = true;
@@ -158,9 +161,12 @@ bool UniformRandomSampler::relationsPossible(SampleContext& context, const Objec
   if (relations.boxLo.x() > relations.boxHi.x()) {
     return true;
   }
+  // The exact gaps of the fcl modes have no bound from the disks: the sides only.
+  const double inf = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < relations.count; ++k) {
     const PositionTest& test = relations.position[k];
-    const std::string why = infeasibleReason(test, relations.leastRadius, relations.mostRadius,
+    const std::string why = infeasibleReason(test, relations.exact ? -inf : relations.leastRadius,
+                                             relations.exact ? inf : relations.mostRadius,
                                              relations.boxLo, relations.boxHi);
     if (!why.empty()) {
       return fail(context, &object, kRelationProbeAttempts - 1,
@@ -168,6 +174,28 @@ bool UniformRandomSampler::relationsPossible(SampleContext& context, const Objec
                       quoteText(name()) + ": " +
                       relationLabel(params_.relations[test.index], test.index) +
                       " cannot hold anywhere: " + why);
+    }
+  }
+  return true;
+}
+
+bool UniformRandomSampler::relationsHold(SampleContext& context, PlacementRelations& relations,
+                                         const Candidate& candidate) const {
+  const Eigen::Vector2d p = candidate.position.head<2>();
+  const double radius = candidate.object->horizontalRadius;
+  if (!relations.exact) {
+    return relations.holds(p, radius);
+  }
+  for (std::size_t k = 0; k < relations.count; ++k) {
+    const PositionTest& test = relations.position[k];
+    double gap = 0.0;
+    const bool holds = test.entry >= 0 && context.exactDistance(
+                                              static_cast<std::size_t>(test.entry), candidate, gap)
+                           ? test.holdsGap(p, gap)
+                           : test.holds(p, radius);
+    if (!holds) {
+      ++relations.refused[k];
+      return false;
     }
   }
   return true;

@@ -109,6 +109,10 @@ PositionTest::PositionTest(const Relation& relation, std::size_t i, const Relati
       high(relation.kind == Relation::Kind::AwayFrom ? std::numeric_limits<double>::infinity()
                                                      : relation.maxGap + target.radius),
       targetRadius(target.radius),
+      minGap(relation.minGap),
+      maxGap(relation.kind == Relation::Kind::AwayFrom ? std::numeric_limits<double>::infinity()
+                                                       : relation.maxGap),
+      entry(-1),
       side(relation.side),
       index(static_cast<std::uint16_t>(i)) {}
 

@@ -97,9 +97,18 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
     }
     // After the region and keep-out tests, with the pose's radius (resting: stable takes
     // position relations only: the orientation stays the sampler's).
-    if (relations != nullptr &&
-        !relations->holds(candidate.position.head<2>(), posed.horizontalRadius)) {
-      continue;
+    if (relations != nullptr) {
+      if (relations->exact) {
+        // The exact gaps need the orientation (drawn already in the fcl modes' attempts).
+        if (!orientFirst) {
+          candidate.orientation = sampleOrientation(engine, posed);
+        }
+        if (!relationsHold(context, *relations, candidate)) {
+          continue;
+        }
+      } else if (!relations->holds(candidate.position.head<2>(), posed.horizontalRadius)) {
+        continue;
+      }
     }
     if (check) {
       const std::ptrdiff_t blocker = context.firstCollision(candidate);
@@ -109,7 +118,7 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
         continue;
       }
     }
-    if (!orientFirst) {
+    if (!orientFirst && (relations == nullptr || !relations->exact)) {
       candidate.orientation = sampleOrientation(engine, posed);
     }
     context.addPlacement(name(), candidate, attempt, params_.hides, pose.restPose);

@@ -113,13 +113,16 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
       continue;
     }
     if (relations != nullptr) {
-      // After the region and keep-out tests; the fcl modes' rotation after them.
-      if (!relations->holds(candidate.position.head<2>(), object.horizontalRadius)) {
-        continue;
-      }
-      if (orientFirst) {
+      // After the region and keep-out tests; the turn before them in the fcl modes, whose
+      // exact gaps need it.
+      if (relations->exact) {
         candidate.orientation =
             relatedOrientation(engine, object, candidate.position.head<2>(), relations);
+        if (!relationsHold(context, *relations, candidate)) {
+          continue;
+        }
+      } else if (!relations->holds(candidate.position.head<2>(), object.horizontalRadius)) {
+        continue;
       }
     }
     if (check) {
@@ -130,7 +133,7 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
         continue;
       }
     }
-    if (!orientFirst) {
+    if (!orientFirst && (relations == nullptr || !relations->exact)) {
       candidate.orientation =
           relatedOrientation(engine, object, candidate.position.head<2>(), relations);
     }

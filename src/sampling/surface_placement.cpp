@@ -237,12 +237,15 @@ bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& e
       continue;
     }
     if (relations != nullptr) {
-      // After the surface and keep-out tests; the fcl modes' rotation after them.
-      if (!relations->holds(p, object.horizontalRadius)) {
-        continue;
-      }
-      if (orientFirst) {
+      // After the surface and keep-out tests; the turn before them in the fcl modes, whose
+      // exact gaps need it.
+      if (relations->exact) {
         candidate.orientation = relatedOrientation(engine, object, p, relations);
+        if (!relationsHold(context, *relations, candidate)) {
+          continue;
+        }
+      } else if (!relations->holds(p, object.horizontalRadius)) {
+        continue;
       }
     }
     if (check) {
@@ -253,7 +256,7 @@ bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& e
         continue;
       }
     }
-    if (!orientFirst) {
+    if (!orientFirst && (relations == nullptr || !relations->exact)) {
       candidate.orientation = relatedOrientation(engine, object, p, relations);
     }
     context.addPlacement(name(), candidate, attempt, params_.hides);

@@ -27,7 +27,7 @@ Relation::Side sideOf(const PositionTest& test, const Eigen::Vector2d& p) {
 
 std::vector<RelationMiss> checkRelations(const UniformRandomSampler& sampler,
                                          const ObjectModel& object, const Candidate& candidate,
-                                         const SampleContext& context) {
+                                         SampleContext& context) {
   std::vector<RelationMiss> misses;
   const std::vector<Relation>& relations = sampler.params().relations;
   const Eigen::Vector2d p = candidate.position.head<2>();
@@ -53,10 +53,16 @@ std::vector<RelationMiss> checkRelations(const UniformRandomSampler& sampler,
     if (r.isPosition()) {
       const PositionTest test(r, i, t);
       const double radius = candidate.object->horizontalRadius;
-      if (test.holds(p, radius)) {
+      // The fcl modes: the shapes' exact distance, as sampling measured it.
+      double exact = 0.0;
+      const bool isExact =
+          context.needsOrientation() &&
+          context.exactDistance(static_cast<std::size_t>(target - context.entries().data()),
+                                candidate, exact);
+      if (isExact ? test.holdsGap(p, exact) : test.holds(p, radius)) {
         continue;
       }
-      miss.value = test.gap(p, radius);
+      miss.value = isExact ? exact : test.gap(p, radius);
       const bool near =
           r.minGap <= miss.value && (r.kind == Relation::Kind::AwayFrom || miss.value <= r.maxGap);
       if (near) {

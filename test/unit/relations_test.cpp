@@ -218,6 +218,68 @@ samplers:
   }
 }
 
+/// In the fcl modes the gap is the shapes' exact distance: a stick next to a disc may lie along
+/// it, closer than its horizontal disk allows; every placed scene validates and rviz's lines
+/// agree.
+TEST(Relations, FclModesMeasureTheShapesExactGap) {
+  const auto config = buildFromYaml(R"(
+objects:
+  plate: {shape: cylinder, radius: 0.1, length: 0.02}
+  stick: {shape: box, size: [0.3, 0.02, 0.02]}
+fixtures:
+  - {name: disc, object: plate, position: [0.0, 0.0, 0.8]}
+samplers:
+  - {name: S, objects: [stick], x_range: [-0.4, 0.4], y_range: [-0.4, 0.4],
+     reference_pos: [0, 0, 0.8], relations: [{next_to: disc, distance: [0.0, 0.02]}]}
+)");
+  const double radii = 0.1 + config->findObject("stick")->horizontalRadius;
+  for (const CollisionMode mode : {CollisionMode::Radius, CollisionMode::Fcl}) {
+    auto generator = std::make_shared<const SceneGenerator>(config);
+    SampleRequest request;
+    request.collisionCheck = mode;
+    const PreparedRequest prepared = generator->prepare(request);
+    const std::vector<SceneResult> results = generator->sampleScenes(prepared, 4, 500, 1);
+    std::size_t inside = 0;  // centres closer than the disks allow
+    for (const SceneResult& r : results) {
+      ASSERT_TRUE(r.success) << r.message;
+      const ObjectPlacement& p = r.placements[0];
+      const double centres = p.position.head<2>().norm();
+      inside += centres < radii ? 1 : 0;
+      if (mode == CollisionMode::Radius) {
+        EXPECT_GE(centres - radii, 0.0);
+        EXPECT_LE(centres - radii, 0.02);
+      }
+      // An independent FCL checker: the exact distance within the range.
+      std::unique_ptr<CollisionChecker> fcl = makeCollisionChecker(CollisionMode::Fcl, 0.0);
+      std::vector<PlacedEntry> entries{PlacedEntry("disc", prepared.fixtures[0].object.get(),
+                                                   prepared.fixtures[0].position,
+                                                   prepared.fixtures[0].orientation, true)};
+      fcl->added(entries, 0);
+      Candidate c;
+      c.object = p.object;
+      c.position = p.position;
+      c.orientation = p.orientation;
+      double gap = 0.0;
+      ASSERT_TRUE(fcl->exactDistance(entries, 0, c, gap));
+      if (mode == CollisionMode::Fcl) {
+        EXPECT_GE(gap, 0.0);
+        EXPECT_LE(gap, 0.02);
+      }
+      const SceneVerdict v =
+          validateScene(*generator, prepared, {{"stick", p.position, p.orientation}});
+      EXPECT_TRUE(v.valid) << collisionModeName(mode) << " scene " << r.index;
+      const std::vector<RelationLink> links = relationLinks(prepared, r);
+      ASSERT_EQ(links.size(), 1u);
+      EXPECT_TRUE(links[0].satisfied);
+    }
+    if (mode == CollisionMode::Fcl) {
+      EXPECT_GT(inside, 100u);
+    } else {
+      EXPECT_EQ(inside, 0u);
+    }
+  }
+}
+
 /// rviz's lines: one per object and relation, satisfied in a sampled scene; a fork moved to the
 /// plate's other side breaks its next_to and its face (the chair is in another direction).
 TEST(Relations, LinksForDisplay) {

@@ -20,7 +20,8 @@ struct RelationLink {
   Relation::Kind kind = Relation::Kind::NextTo;
   Eigen::Vector3d from = Eigen::Vector3d::Zero();  ///< the object's origin [m]
   Eigen::Vector3d to = Eigen::Vector3d::Zero();    ///< the target's origin [m]
-  bool satisfied = false;                          ///< relationHolds()
+  /// relationHolds(); in the fcl modes next_to and away_from by the shapes' exact distance
+  bool satisfied = false;
 };
 
 /// The relations of every uniform sampler that @p request ran in @p scene, one link per placed

@@ -95,9 +95,12 @@ struct PositionTest {
   Eigen::Vector2d centre;
   double cosHeading;
   double sinHeading;
-  double low;           ///< minimum gap plus the target's radius [m]
-  double high;          ///< maximum gap plus the target's radius (inf: none) [m]
-  double targetRadius;  ///< [m]
+  double low;            ///< minimum gap plus the target's radius [m]
+  double high;           ///< maximum gap plus the target's radius (inf: none) [m]
+  double targetRadius;   ///< [m]
+  double minGap;         ///< the relation's [m]
+  double maxGap;         ///< the relation's (inf: away_from) [m]
+  std::ptrdiff_t entry;  ///< the target's index in the scene's entries (-1: not known)
   Relation::Side side;
   std::uint16_t index;  ///< in the sampler's relations
 
@@ -113,6 +116,15 @@ struct PositionTest {
     if ((lo > 0.0 && dd < lo * lo) || dd > hi * hi) {
       return false;
     }
+    return inSector(p);
+  }
+  /// The fcl modes' test: the side by the centres, the gap given (the shapes' signed distance).
+  bool holdsGap(const Eigen::Vector2d& p, double gap) const {
+    return gap >= minGap && gap <= maxGap && inSector(p);
+  }
+  /// True when @p p is on the relation's side of the target (always for any).
+  bool inSector(const Eigen::Vector2d& p) const {
+    const Eigen::Vector2d d = p - centre;
     return side == Relation::Side::Any || inSide(side, d.x() * cosHeading + d.y() * sinHeading,
                                                  d.y() * cosHeading - d.x() * sinHeading);
   }
@@ -165,6 +177,9 @@ struct PlacementRelations {
   bool turns = false;     ///< @ref turn sets the yaw
   RotationTest turn;
   double alignedLength = 0.0;  ///< align_with: the allowed turns' length [rad]
+  /// The fcl modes: the gaps are the shapes' exact distances (CollisionChecker::exactDistance()),
+  /// the orientation drawn before the test.
+  bool exact = false;
   /// The box the centres are drawn from (world) for infeasibleReason(); lo > hi: not known.
   Eigen::Vector2d boxLo = Eigen::Vector2d::Ones();
   Eigen::Vector2d boxHi = Eigen::Vector2d::Zero();

@@ -197,6 +197,11 @@ class UniformRandomSampler : public PlacementSampler {
   /// relation cannot hold anywhere in @p relations' box.
   bool relationsPossible(SampleContext& context, const ObjectModel& object,
                          const PlacementRelations& relations) const;
+  /// True when every position relation holds for @p candidate (its pose and posed object): the
+  /// disks' gaps, or in the fcl modes (@p relations.exact) the shapes' exact distances; counts
+  /// the first that does not.
+  bool relationsHold(SampleContext& context, PlacementRelations& relations,
+                     const Candidate& candidate) const;
   /// The orientation of @p object at @p p: the sampler's rotation draw, or the one of a
   /// rotation relation (README, "Relations").
   Eigen::Quaterniond relatedOrientation(Engine& engine, const ObjectModel& object,

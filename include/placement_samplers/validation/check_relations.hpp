@@ -22,9 +22,10 @@ struct RelationMiss {
 /// The relations of @p sampler that apply to @p object and do not hold for @p candidate (the
 /// object's pose; its `object` the model in its resting pose, whose radius counts), against
 /// the fixtures and objects already in @p context. Position relations are decided by the very
-/// test sampling uses (PositionTest::holds()); angles with kRelationAngleSlack.
+/// test sampling uses (PositionTest::holds(), or in the fcl modes PositionTest::holdsGap() with
+/// the shapes' exact distance from @p context's checker); angles with kRelationAngleSlack.
 std::vector<RelationMiss> checkRelations(const UniformRandomSampler& sampler,
                                          const ObjectModel& object, const Candidate& candidate,
-                                         const SampleContext& context);
+                                         SampleContext& context);
 
 }  // namespace placement_samplers
