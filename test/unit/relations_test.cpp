@@ -280,6 +280,36 @@ samplers:
   }
 }
 
+/// A target that every request gives: a scene without it fails at once naming the relation,
+/// one with it holds the relation.
+TEST(Relations, RequestFixtureTargets) {
+  const auto config = buildFromYaml(kObjects + R"(
+samplers:
+  - {name: S, objects: [cube], x_range: [-0.5, 0.5], y_range: [-0.5, 0.5],
+     relations: [{next_to: robot, distance: [0.0, 0.1], request_fixture: true}]}
+)");
+  auto generator = std::make_shared<const SceneGenerator>(config);
+  const SceneResult missing = generator->sampleScene(generator->prepare(SampleRequest()), 1, 0);
+  ASSERT_FALSE(missing.success);
+  EXPECT_EQ(missing.message,
+            "could not place object 'cube' with sampler 'S': relations[0] (next_to 'robot', gap "
+            "[0, 0.1] m) cannot hold: its target is neither a fixture nor an object placed "
+            "before it");
+  SampleRequest request;
+  request.fixtures.push_back({"robot", "mark", std::nullopt, Eigen::Vector3d(0.2, 0.1, 0.0),
+                              Eigen::Quaterniond::Identity()});
+  const PreparedRequest prepared = generator->prepare(request);
+  const std::vector<SceneResult> results = generator->sampleScenes(prepared, 1, 200, 1);
+  for (const SceneResult& r : results) {
+    ASSERT_TRUE(r.success) << r.message;
+    const double gap = (r.placements[0].position.head<2>() - Eigen::Vector2d(0.2, 0.1)).norm() -
+                       r.placements[0].object->horizontalRadius -
+                       prepared.fixtures.back().object->horizontalRadius;
+    EXPECT_GE(gap, -1e-12);
+    EXPECT_LE(gap, 0.1 + 1e-12);
+  }
+}
+
 /// rviz's lines: one per object and relation, satisfied in a sampled scene; a fork moved to the
 /// plate's other side breaks its next_to and its face (the chair is in another direction).
 TEST(Relations, LinksForDisplay) {
