@@ -29,6 +29,12 @@ std::ptrdiff_t CombinedChecker::firstCollision(const std::vector<PlacedEntry>& e
   return hit != kNone ? hit : second_->firstCollision(entries, candidate);
 }
 
+bool CombinedChecker::exactDistance(const std::vector<PlacedEntry>& entries, std::size_t index,
+                                    const Candidate& candidate, double& distance) {
+  return first_->exactDistance(entries, index, candidate, distance) ||
+         second_->exactDistance(entries, index, candidate, distance);
+}
+
 bool CombinedChecker::includesRadiusTest() const {
   return first_->includesRadiusTest() || second_->includesRadiusTest();
 }

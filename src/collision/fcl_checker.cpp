@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -255,6 +256,25 @@ struct FclChecker::Impl {
     return distance.min_distance < limit;
   }
 
+  /// The signed distance of two bodies [m]: apart, FCL's distance; in contact, minus the
+  /// deepest contact's penetration.
+  double signedDistance(const Body& a, const Body& b) {
+    result.clear();
+    fcl::collide(&a, &b, boolRequest, result);
+    if (result.isCollision()) {
+      result.clear();
+      fcl::collide(&a, &b, depthRequest, result);
+      double depth = 0.0;
+      for (std::size_t i = 0; i < result.numContacts(); ++i) {
+        depth = std::max(depth, result.getContact(i).penetration_depth);
+      }
+      return -depth;
+    }
+    distance.clear();
+    fcl::distance(&a, &b, distanceRequest, distance);
+    return distance.min_distance;
+  }
+
   enum class Verdict { Clear, Hit, Unknown };
 
   /// What the cheap tests say of a pair: the circles when both bound their geometry, the exact
@@ -376,6 +396,31 @@ std::ptrdiff_t FclChecker::firstCollision(const std::vector<PlacedEntry>& /*entr
   Impl::Query query{impl_.get(), &g.candidate, kNone, candidate.support};
   impl_->collide(g, g.candidate, query);
   return query.hit;
+}
+
+bool FclChecker::exactDistance(const std::vector<PlacedEntry>& entries, std::size_t index,
+                               const Candidate& candidate, double& distance) {
+  const PlacedEntry& entry = entries.at(index);
+  const Impl::ObjectGeometry& placed = impl_->geometryOf(*entry.object);
+  const Impl::Instance* target = nullptr;
+  for (std::size_t i = 0; i < placed.used; ++i) {
+    if (placed.placed[i]->entry == static_cast<std::ptrdiff_t>(index)) {
+      target = placed.placed[i].get();
+    }
+  }
+  if (target == nullptr) {
+    return false;
+  }
+  Impl::ObjectGeometry& g = impl_->geometryOf(*candidate.object);
+  Impl::place(g, g.candidate, candidate.position, candidate.orientation);
+  Impl::placeBodies(g, g.candidate, impl_->margin);
+  distance = std::numeric_limits<double>::infinity();
+  for (const std::unique_ptr<Body>& mine : g.candidate.bodies) {
+    for (const std::unique_ptr<Body>& other : target->bodies) {
+      distance = std::min(distance, impl_->signedDistance(*mine, *other));
+    }
+  }
+  return true;
 }
 
 }  // namespace placement_samplers

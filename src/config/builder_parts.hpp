@@ -3,6 +3,7 @@
 // settings, the items of a samplers list, a uniform sampler's parameters. Private to the core.
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -69,7 +70,20 @@ void checkSamplerKeys(const SamplerItem& s, std::vector<std::string> allowed);
 
 /// A uniform sampler's own parameters (ranges, rotation, flags); @p maxAttempts is the
 /// configuration's default.
-UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAttempts);
+UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAttempts,
+                                        const std::string& name = "");
+
+/// A uniform sampler's `relations:` list (README, "Relations"): each item's keys and values.
+std::vector<Relation> parseRelations(const ConfigNode& list, const std::string& sampler);
+
+/// Checks the targets of @p relations (read from @p list) of sampler @p sampler placing
+/// @p objects in that order: a configured fixture, an object an earlier sampler places
+/// (@p available) or one of @p objects before each object a relation applies to; objects:
+/// lists name @p objects. Errors name the relation and say what was expected; a target placed
+/// after its object is a cycle when the relations lead back.
+void checkRelationTargets(const ConfigNode& list, const std::vector<Relation>& relations,
+                          const std::string& sampler, const std::vector<ObjectPtr>& objects,
+                          const std::set<std::string>& available, const SceneConfig& config);
 
 /// A [min, max] pair with min <= max.
 Eigen::Vector2d parseRange(const ConfigNode& n);

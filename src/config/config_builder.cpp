@@ -177,10 +177,10 @@ class Builder {
         item, {"type", "objects", "x_range", "y_range", "rotation", "rotation_axis",
                "ensure_object_boundary_in_range", "ensure_valid_placement", "reference_pos",
                "z_offset", "sample_args", "max_attempts", "region", "keep_out", "strategy",
-               "resting", "min_probability", "allow_rolling"});
+               "resting", "min_probability", "allow_rolling", "relations"});
     const std::string name = samplerName(item);
     const ConfigNode& s = *item.params;
-    const UniformSamplerParams p = detail::parseUniformParams(s, config_.maxAttempts);
+    const UniformSamplerParams p = detail::parseUniformParams(s, config_.maxAttempts, name);
     // A named reference must exist before this sampler runs: a fixture or an earlier object.
     if (reference && reference->kind == Reference::Kind::Name &&
         available_.count(reference->name) == 0) {
@@ -199,6 +199,9 @@ class Builder {
         objects.push_back(object(n));
       }
     }
+    if (const ConfigNode* list = s.get("relations")) {
+      detail::checkRelationTargets(*list, p.relations, name, objects, available_, config_);
+    }
     std::shared_ptr<UniformRandomSampler> sampler;
     try {
       sampler = std::make_shared<UniformRandomSampler>(name, p, objects);
@@ -207,7 +210,7 @@ class Builder {
       const std::string message = e.what();
       const ConfigNode* where = &s;
       for (const char* key : {"x_range", "y_range", "rotation", "reference_pos", "z_offset",
-                              "max_attempts", "region"}) {
+                              "max_attempts", "region", "relations"}) {
         if (message.find(std::string("': ") + key + " ") != std::string::npos && s.get(key)) {
           where = s.get(key);
         }

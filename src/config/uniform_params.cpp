@@ -7,7 +7,8 @@
 
 namespace placement_samplers::detail {
 
-UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAttempts) {
+UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAttempts,
+                                        const std::string& name) {
   UniformSamplerParams p;
   p.maxAttempts = maxAttempts;
   if (const ConfigNode* n = s.get("x_range")) {
@@ -101,6 +102,9 @@ UniformSamplerParams parseUniformParams(const ConfigNode& s, std::uint32_t maxAt
   }
   if (const ConfigNode* n = s.get("allow_rolling")) {
     p.allowRolling = n->asBool();
+  }
+  if (const ConfigNode* n = s.get("relations")) {
+    p.relations = parseRelations(*n, name);
   }
   return p;
 }

@@ -9,6 +9,7 @@
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/text.hpp"
 #include "output/json_numbers.hpp"
+#include "output/relation_json.hpp"
 #include "output/surface_json.hpp"
 
 namespace placement_samplers {
@@ -206,6 +207,7 @@ void appendUniform(std::string& out, const UniformRandomSampler& sampler) {
     }
     out += ']';
   }
+  detail::appendRelations(out, p.relations);
   out += p.hides ? ", \"hides\": true}" : ", \"hides\": false}";
 }
 

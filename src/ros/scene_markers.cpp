@@ -10,6 +10,7 @@
 
 #include "placement_samplers/geometry/shape.hpp"
 #include "placement_samplers/ros/conversions.hpp"
+#include "placement_samplers/sampling/relation_links.hpp"
 #include "placement_samplers/sampling/sampler_regions.hpp"
 
 namespace placement_samplers {
@@ -196,6 +197,17 @@ class MarkerBuilder {
     m.points[1] = toPoseMsg(to, Eigen::Quaterniond::Identity()).position;
   }
 
+  /// A relation from an object to its target (namespace "relations"): green when it holds,
+  /// red when not.
+  void relation(const RelationLink& link) {
+    Marker& m =
+        add("relations", Marker::LINE_LIST, Eigen::Isometry3d::Identity(),
+            Eigen::Vector3d(0.004, 0.0, 0.0),  // scale.x: line width [m]
+            link.satisfied ? colour(0.1f, 0.85f, 0.2f, 0.9f) : colour(1.0f, 0.1f, 0.1f, 0.9f));
+    m.points.push_back(toPoseMsg(link.from, Eigen::Quaterniond::Identity()).position);
+    m.points.push_back(toPoseMsg(link.to, Eigen::Quaterniond::Identity()).position);
+  }
+
   /// The physics ground plane: a thin slab whose top is just below @p z (so that regions
   /// drawn at the same height stay visible), covering @p lo .. @p hi in x and y.
   void ground(double z, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
@@ -342,6 +354,9 @@ visualization_msgs::MarkerArray makeSceneMarkers(const PreparedRequest& request,
     for (const Eigen::Vector3d& v : region.triangles) {
       growExtent(v, Eigen::Vector2d::Zero(), lo, hi);
     }
+  }
+  for (const RelationLink& link : relationLinks(request, scene)) {
+    builder.relation(link);
   }
   if (physics.groundZ && lo.x() <= hi.x()) {
     const double margin = 0.25;  // [m] around the objects and regions

@@ -31,6 +31,8 @@ std::uint8_t kindMsg(Violation::Kind kind) {
       return PoseViolation::BAD_POSE;
     case Violation::Kind::RestPose:
       return PoseViolation::REST_POSE;
+    case Violation::Kind::Relation:
+      return PoseViolation::RELATION;
   }
   return PoseViolation::UNKNOWN_OBJECT;
 }

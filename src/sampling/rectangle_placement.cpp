@@ -51,27 +51,55 @@ Eigen::Quaterniond UniformRandomSampler::sampleOrientation(Engine& engine,
 
 bool UniformRandomSampler::placeOne(SampleContext& context, const Entry& entry,
                                     const Eigen::Vector3d& base, bool onTop) const {
+  if (!entry.relations.empty()) {
+    // The box the centres are drawn from, for the fast failure of a relation that cannot
+    // hold: the inset rectangle, a shape's bounds, none on surfaces (lo > hi).
+    const bool rectangle = entry.poses.empty() && !params_.surface && !entry.draw;
+    const Eigen::Vector2d lo = params_.surface ? Eigen::Vector2d(1.0, 1.0)
+                               : rectangle     ? Eigen::Vector2d(entry.x[0], entry.y[0])
+                                               : boundsLo_;
+    const Eigen::Vector2d hi = params_.surface ? Eigen::Vector2d(0.0, 0.0)
+                               : rectangle     ? Eigen::Vector2d(entry.x[1], entry.y[1])
+                                               : boundsHi_;
+    const Eigen::Vector2d shift =
+        params_.surface ? Eigen::Vector2d::Zero() : Eigen::Vector2d(base.head<2>());
+    PlacementRelations relations;
+    if (!resolveRelations(context, entry, lo + shift, hi + shift, relations)) {
+      return false;
+    }
+    if (!entry.poses.empty()) {
+      return placeOneResting(context, entry, base, onTop, &relations);
+    }
+    if (params_.surface) {
+      return placeOnSurface(context, entry, base, &relations);
+    }
+    if (entry.draw) {
+      return placeOneShaped(context, entry, base, onTop, &relations);
+    }
+    EngineDraws draws{engineOf(context)};
+    return placeInRectangle<true>(context, entry, base, onTop, draws, &relations);
+  }
   if (!entry.poses.empty()) {
-    return placeOneResting(context, entry, base, onTop);
+    return placeOneResting(context, entry, base, onTop, nullptr);
   }
   if (params_.surface) {
-    return placeOnSurface(context, entry, base);
+    return placeOnSurface(context, entry, base, nullptr);
   }
   if (entry.draw) {
-    return placeOneShaped(context, entry, base, onTop);
+    return placeOneShaped(context, entry, base, onTop, nullptr);
   }
   if (UniformSource* source = context.uniformSource()) {
     SourceDraws draws{*source};
-    return placeInRectangle(context, entry, base, onTop, draws);
+    return placeInRectangle<false>(context, entry, base, onTop, draws, nullptr);
   }
   EngineDraws draws{engineOf(context)};
-  return placeInRectangle(context, entry, base, onTop, draws);
+  return placeInRectangle<false>(context, entry, base, onTop, draws, nullptr);
 }
 
-template <class Draws>
+template <bool kRelated, class Draws>
 bool UniformRandomSampler::placeInRectangle(SampleContext& context, const Entry& entry,
-                                            const Eigen::Vector3d& base, bool onTop,
-                                            Draws& draws) const {
+                                            const Eigen::Vector3d& base, bool onTop, Draws& draws,
+                                            PlacementRelations* relations) const {
   const ObjectModel& object = *entry.object;
   // robosuite's draws: per attempt x then y, one rotation draw after the accepted attempt
   // (the fcl modes draw it per attempt, before their test, which needs it).
@@ -105,7 +133,23 @@ bool UniformRandomSampler::placeInRectangle(SampleContext& context, const Entry&
     const double x = draws(entry.x[0], entry.x[1], UniformSource::Draw::X) + base.x();
     const double y = draws(entry.y[0], entry.y[1], UniformSource::Draw::Y) + base.y();
     candidate.position.head<2>() = Eigen::Vector2d(x, y);
-    if (orientFirst) {
+    if constexpr (kRelated) {
+      // The relations after the region's draws; after the accepted attempt the turn (face
+      // needs the position), but before the test in the fcl modes, whose exact gaps need it.
+      if (attempt == kRelationProbeAttempts && !relationsPossible(context, object, *relations)) {
+        return false;
+      }
+      if (relations->exact) {
+        // The exact gaps need the orientation: drawn first (face: towards the target from here).
+        candidate.orientation =
+            relatedOrientation(draws.engine, object, candidate.position.head<2>(), relations);
+        if (!relationsHold(context, *relations, candidate)) {
+          continue;
+        }
+      } else if (!relations->holds(candidate.position.head<2>(), object.horizontalRadius)) {
+        continue;
+      }
+    } else if (orientFirst) {
       angle = drawAngle(draws);
       candidate.orientation = orientationOf(angle, object);
     }
@@ -119,18 +163,25 @@ bool UniformRandomSampler::placeInRectangle(SampleContext& context, const Entry&
         continue;
       }
     }
-    if (!orientFirst) {
-      angle = drawAngle(draws);
-      if (params_.orientations) {
-        candidate.orientation = orientationOf(angle, object);
+    if constexpr (kRelated) {
+      if (!relations->exact) {
+        candidate.orientation =
+            relatedOrientation(draws.engine, object, candidate.position.head<2>(), relations);
       }
+    } else {
+      if (!orientFirst) {
+        angle = drawAngle(draws);
+        if (params_.orientations) {
+          candidate.orientation = orientationOf(angle, object);
+        }
+      }
+      draws.rotation(angle);
     }
-    draws.rotation(angle);
     context.addPlacement(name(), candidate, attempt, params_.hides);
     return true;
   }
 
-  return failPlacement(context, object, limit, counts, 0);
+  return failPlacement(context, object, limit, counts, 0, relations);
 }
 
 }  // namespace placement_samplers

@@ -8,7 +8,8 @@
 namespace placement_samplers {
 
 bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& entry,
-                                           const Eigen::Vector3d& base, bool onTop) const {
+                                           const Eigen::Vector3d& base, bool onTop,
+                                           PlacementRelations* relations) const {
   const ObjectModel& object = *entry.object;
   Engine& engine = engineOf(context);
   const std::uint32_t limit = attemptLimit(context);
@@ -46,6 +47,10 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
   for (std::uint32_t attempt = 1; attempt <= limit; ++attempt) {
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
+    }
+    if (relations != nullptr && attempt == kRelationProbeAttempts &&
+        !relationsPossible(context, object, *relations)) {
+      return false;
     }
     // The pose by probability, then the region's draws with the pose's numbers.
     const double u = uniform01(engine);
@@ -90,6 +95,21 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
       ++outside;
       continue;
     }
+    // After the region and keep-out tests, with the pose's radius (resting: stable takes
+    // position relations only: the orientation stays the sampler's).
+    if (relations != nullptr) {
+      if (relations->exact) {
+        // The exact gaps need the orientation (drawn already in the fcl modes' attempts).
+        if (!orientFirst) {
+          candidate.orientation = sampleOrientation(engine, posed);
+        }
+        if (!relationsHold(context, *relations, candidate)) {
+          continue;
+        }
+      } else if (!relations->holds(candidate.position.head<2>(), posed.horizontalRadius)) {
+        continue;
+      }
+    }
     if (check) {
       const std::ptrdiff_t blocker = context.firstCollision(candidate);
       if (blocker != CollisionChecker::kNone) {
@@ -98,13 +118,13 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
         continue;
       }
     }
-    if (!orientFirst) {
+    if (!orientFirst && (relations == nullptr || !relations->exact)) {
       candidate.orientation = sampleOrientation(engine, posed);
     }
     context.addPlacement(name(), candidate, attempt, params_.hides, pose.restPose);
     return true;
   }
-  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside, relations);
 }
 
 }  // namespace placement_samplers

@@ -75,7 +75,8 @@ std::shared_ptr<const RegionDraw> UniformRandomSampler::regionDraw(const ObjectM
 }
 
 bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& entry,
-                                          const Eigen::Vector3d& base, bool onTop) const {
+                                          const Eigen::Vector3d& base, bool onTop,
+                                          PlacementRelations* relations) const {
   const ObjectModel& object = *entry.object;
   // Per attempt: the region's draws (README, "Region shapes"), the rotation in the fcl modes,
   // then the inset test of a non-convex polygon, the keep-out zones and the collision test;
@@ -97,15 +98,32 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
     }
+    if (relations != nullptr && attempt == kRelationProbeAttempts &&
+        !relationsPossible(context, object, *relations)) {
+      return false;
+    }
     const Eigen::Vector2d local = entry.draw->draw(engine);
     candidate.position.head<2>() = local + offset;
-    if (orientFirst) {
+    if (orientFirst && relations == nullptr) {
       candidate.orientation = sampleOrientation(engine, object);
     }
     const bool blocked = !entry.draw->accepts(local) || inKeepOut(local, offset, margin);
     if (blocked) {
       ++outside;
       continue;
+    }
+    if (relations != nullptr) {
+      // After the region and keep-out tests; the turn before them in the fcl modes, whose
+      // exact gaps need it.
+      if (relations->exact) {
+        candidate.orientation =
+            relatedOrientation(engine, object, candidate.position.head<2>(), relations);
+        if (!relationsHold(context, *relations, candidate)) {
+          continue;
+        }
+      } else if (!relations->holds(candidate.position.head<2>(), object.horizontalRadius)) {
+        continue;
+      }
     }
     if (check) {
       const std::ptrdiff_t blocker = context.firstCollision(candidate);
@@ -115,13 +133,14 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
         continue;
       }
     }
-    if (!orientFirst) {
-      candidate.orientation = sampleOrientation(engine, object);
+    if (!orientFirst && (relations == nullptr || !relations->exact)) {
+      candidate.orientation =
+          relatedOrientation(engine, object, candidate.position.head<2>(), relations);
     }
     context.addPlacement(name(), candidate, attempt, params_.hides);
     return true;
   }
-  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside, relations);
 }
 
 }  // namespace placement_samplers

@@ -180,7 +180,8 @@ const SurfaceDraw* UniformRandomSampler::surfaceDrawOn(SampleContext& context, c
 }
 
 bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& entry,
-                                          const Eigen::Vector3d& base) const {
+                                          const Eigen::Vector3d& base,
+                                          PlacementRelations* relations) const {
   const ObjectModel& object = *entry.object;
   const SurfaceRegion& region = *params_.surface;
   const PlacedEntry* target = context.find(region.of);
@@ -216,10 +217,14 @@ bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& e
     if ((attempt & 1023u) == 0 && context.expired()) {
       return failOutOfTime(context, object, attempt - 1);
     }
+    if (relations != nullptr && attempt == kRelationProbeAttempts &&
+        !relationsPossible(context, object, *relations)) {
+      return false;
+    }
     std::size_t surface = 0;
     const Eigen::Vector2d p = draw->draw(engine, surface);
     candidate.position = Eigen::Vector3d(p.x(), p.y(), draw->z(surface) + lift);
-    if (orientFirst) {
+    if (orientFirst && relations == nullptr) {
       candidate.orientation = sampleOrientation(engine, object);
     }
     bool blocked = !draw->accepts(p, surface);
@@ -231,6 +236,18 @@ bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& e
       ++outside;
       continue;
     }
+    if (relations != nullptr) {
+      // After the surface and keep-out tests; the turn before them in the fcl modes, whose
+      // exact gaps need it.
+      if (relations->exact) {
+        candidate.orientation = relatedOrientation(engine, object, p, relations);
+        if (!relationsHold(context, *relations, candidate)) {
+          continue;
+        }
+      } else if (!relations->holds(p, object.horizontalRadius)) {
+        continue;
+      }
+    }
     if (check) {
       const std::ptrdiff_t blocker = context.firstCollision(candidate);
       if (blocker != CollisionChecker::kNone) {
@@ -239,13 +256,13 @@ bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& e
         continue;
       }
     }
-    if (!orientFirst) {
-      candidate.orientation = sampleOrientation(engine, object);
+    if (!orientFirst && (relations == nullptr || !relations->exact)) {
+      candidate.orientation = relatedOrientation(engine, object, p, relations);
     }
     context.addPlacement(name(), candidate, attempt, params_.hides);
     return true;
   }
-  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+  return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside, relations);
 }
 
 }  // namespace placement_samplers

@@ -64,6 +64,7 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
   if (!params_.checkInputs) {
     // The caller's source checks what it draws; the rest is robosuite's to accept.
     if (params_.region || params_.surface || !params_.keepOut.empty() ||
+        !params_.relations.empty() ||
         params_.strategy != UniformSamplerParams::Strategy::Rejection) {
       throw ConfigError(where + "unchecked inputs are for rectangular rejection sampling only");
     }
@@ -106,6 +107,7 @@ UniformRandomSampler::UniformRandomSampler(std::string name, const UniformSample
     throw ConfigError(where + "max_attempts must be at least 1");
   }
   checkShapes(where);
+  checkRelations(where);
   if (params_.resting == UniformSamplerParams::Resting::Stable) {
     if (params_.rotationAxis != 2) {
       throw ConfigError(where +
@@ -150,6 +152,7 @@ void UniformRandomSampler::addObjects(const std::vector<ObjectPtr>& objects) {
     if (entry.poses.empty()) {
       bindEntrySurfaces(entry);
     }
+    bindRelations(entry);
     entries_.push_back(std::move(entry));
   }
 }
@@ -216,7 +219,7 @@ bool UniformRandomSampler::sample(SampleContext& context, const Reference& refer
   const Eigen::Vector3d& base = *resolved;
   if (context.uniformSource() != nullptr &&
       (params_.region || params_.surface || !params_.keepOut.empty() ||
-       params_.resting != UniformSamplerParams::Resting::Upright ||
+       !params_.relations.empty() || params_.resting != UniformSamplerParams::Resting::Upright ||
        params_.strategy != UniformSamplerParams::Strategy::Rejection)) {
     throw std::logic_error("sampler " + quoteText(name()) +
                            ": a UniformSource serves rectangular rejection sampling only");
@@ -259,7 +262,8 @@ bool UniformRandomSampler::failOutOfTime(SampleContext& context, const ObjectMod
 bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectModel& object,
                                          std::uint32_t limit,
                                          const std::vector<std::uint32_t>* counts,
-                                         std::uint32_t outside) const {
+                                         std::uint32_t outside,
+                                         const PlacementRelations* relations) const {
   Failure failure;
   failure.object = object.name;
   failure.sampler = name();
@@ -286,6 +290,19 @@ bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectMod
   if (outside > 0) {
     out << (counts != nullptr && !counts->empty() ? "; " : ": ") << outside
         << " of them fell into a keep-out zone or too near the region's edge";
+  }
+  if (relations != nullptr && relations->count > 0) {
+    // The relation that refused the most attempts (the first of them when tied).
+    std::size_t most = 0;
+    for (std::size_t i = 1; i < relations->count; ++i) {
+      most = relations->refused[i] > relations->refused[most] ? i : most;
+    }
+    if (relations->refused[most] > 0) {
+      const std::size_t index = relations->position[most].index;
+      const bool listed = (counts != nullptr && !counts->empty()) || outside > 0;
+      out << (listed ? "; " : ": ") << relations->refused[most] << " of them were refused by "
+          << relationLabel(params_.relations[index], index);
+    }
   }
   failure.message = out.str();
   context.fail(std::move(failure));

@@ -14,6 +14,7 @@
 #include "placement_samplers/sampling/sample_context.hpp"
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/text.hpp"
+#include "placement_samplers/validation/check_relations.hpp"
 #include "placement_samplers/validation/region_test.hpp"
 
 namespace placement_samplers {
@@ -158,6 +159,9 @@ class Validator {
                 ", off the height of sampler " + quoteText(s) + " (" + metres(z) + ") by " +
                 metres(off));
       }
+    }
+    for (RelationMiss& miss : checkRelations(sampler, object, candidate, context_)) {
+      add(verdict, Violation::Kind::Relation, s, miss.target, miss.value, std::move(miss.message));
     }
     if (params.ensureValidPlacement) {
       const std::ptrdiff_t hit = context_.firstCollision(candidate);
@@ -387,6 +391,8 @@ const char* violationKindName(Violation::Kind kind) {
       return "bad_pose";
     case Violation::Kind::RestPose:
       return "rest_pose";
+    case Violation::Kind::Relation:
+      return "relation";
   }
   return "unknown_object";
 }

@@ -1,5 +1,6 @@
 // The markers of a scene without a master: region shapes and keep-out zones as triangles, what
-// physics did to each object, the ground plane, and the scene as a PoseArray.
+// physics did to each object, the ground plane, relations as lines, and the scene as a
+// PoseArray.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -226,6 +227,41 @@ samplers:
   EXPECT_NEAR(ground.pose.position.y, 0.0, 1e-12);
   EXPECT_NEAR(ground.scale.x, 0.4 + 0.5, 1e-12);
   EXPECT_NEAR(ground.scale.y, 0.2 + 0.5, 1e-12);
+}
+
+TEST(SceneMarkers, RelationsAreLinesColouredBySatisfied) {
+  const std::string yaml = R"(
+objects:
+  plate: {shape: cylinder, radius: 0.1, length: 0.02}
+  cube: {shape: box, size: [0.04, 0.04, 0.04]}
+samplers:
+  - {name: P, objects: [plate], x_range: [-0.1, 0.1], y_range: [-0.1, 0.1]}
+  - {name: C, objects: [cube], x_range: [-0.5, 0.5], y_range: [-0.5, 0.5],
+     relations: [{next_to: plate, side: left, distance: [0.0, 0.05]}]}
+)";
+  const SceneGenerator generator(buildSceneConfig(parseYaml(yaml, "relations.yaml")));
+  const PreparedRequest request = generator.prepare(SampleRequest());
+  SceneResult scene = generator.sampleScene(request, 1, 0);
+  ASSERT_TRUE(scene.success);
+  // The array kept: byNamespace() points into it.
+  const visualization_msgs::MarkerArray array =
+      makeSceneMarkers(request, scene, "world", ros::Time(1.0));
+  auto ns = byNamespace(array);
+  ASSERT_EQ(ns["relations"].size(), 1u);
+  const Marker& line = *ns["relations"][0];
+  EXPECT_EQ(line.type, Marker::LINE_LIST);
+  ASSERT_EQ(line.points.size(), 2u);
+  EXPECT_EQ(line.points[0].x, scene.placements[1].position.x());  // from the cube
+  EXPECT_EQ(line.points[1].y, scene.placements[0].position.y());  // to the plate
+  EXPECT_GT(line.color.g, line.color.r);                          // green: it holds
+  // The cube moved to the plate's other side: red.
+  scene.placements[1].position.head<2>() =
+      2 * scene.placements[0].position.head<2>() - scene.placements[1].position.head<2>();
+  const visualization_msgs::MarkerArray moved =
+      makeSceneMarkers(request, scene, "world", ros::Time(1.0));
+  ns = byNamespace(moved);
+  ASSERT_EQ(ns["relations"].size(), 1u);
+  EXPECT_GT(ns["relations"][0]->color.r, ns["relations"][0]->color.g);
 }
 
 TEST(SceneMarkers, PoseArrayHoldsThePlacedObjectsInSamplingOrder) {

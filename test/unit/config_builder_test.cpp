@@ -275,7 +275,7 @@ TEST(ConfigBuilder, NamedSamplerErrorsNameThePath) {
       " (expected one of: type, objects, x_range, y_range, rotation, rotation_axis, "
       "ensure_object_boundary_in_range, ensure_valid_placement, reference_pos, z_offset, "
       "sample_args, max_attempts, region, keep_out, strategy, resting, min_probability, "
-      "allow_rolling)";
+      "allow_rolling, relations)";
   EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {objects: [cube], x_rnage: [0, 1]}\n"),
             "S: unknown key 'x_rnage'" + keys);
   EXPECT_EQ(buildError(kObjects + "samplers: [S]\nS: {name: S}\n"), "S: unknown key 'name'" + keys);
@@ -307,7 +307,7 @@ TEST(ConfigBuilder, UnknownKeysNameThePath) {
             "samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, x_range, "
             "y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
             "ensure_valid_placement, reference_pos, z_offset, sample_args, max_attempts, region, "
-            "keep_out, strategy, resting, min_probability, allow_rolling)");
+            "keep_out, strategy, resting, min_probability, allow_rolling, relations)");
   EXPECT_EQ(buildError("objects:\n  cube: {shape: box, size: [1, 1, 1], radius: 1}\n"),
             "objects.cube: unknown key 'radius' (expected one of: shape, size, horizontal_radius, "
             "bottom_offset, top_offset, init_orientation, density)");

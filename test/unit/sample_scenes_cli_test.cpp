@@ -339,12 +339,13 @@ TEST(SampleScenesCli, BadConfigExitsTwoNamingTheFile) {
   const CliRun r = run({"--config", typo.path});
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(r.out.empty());
-  EXPECT_EQ(r.err,
-            "sample_scenes: " + typo.path +
-                ": samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, "
-                "x_range, y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
-                "ensure_valid_placement, reference_pos, z_offset, sample_args, max_attempts, "
-                "region, keep_out, strategy, resting, min_probability, allow_rolling)\n");
+  EXPECT_EQ(
+      r.err,
+      "sample_scenes: " + typo.path +
+          ": samplers[0]: unknown key 'x_rnage' (expected one of: name, type, objects, "
+          "x_range, y_range, rotation, rotation_axis, ensure_object_boundary_in_range, "
+          "ensure_valid_placement, reference_pos, z_offset, sample_args, max_attempts, "
+          "region, keep_out, strategy, resting, min_probability, allow_rolling, relations)\n");
   const TempConfig broken("broken.yaml", "samplers: [1, 2\nseed: 3\n");
   const CliRun s = run({"--config", broken.path});
   EXPECT_EQ(s.status, 2);

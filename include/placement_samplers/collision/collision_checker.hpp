@@ -63,6 +63,13 @@ class CollisionChecker {
                                         const Candidate& candidate) = 0;
   /// True when the candidate's orientation matters (then it is drawn before the test).
   virtual bool needsOrientation() const = 0;
+  /// The exact distance between @p candidate's geometry and entry @p index's [m] (negative: by
+  /// how much they penetrate), in @p distance; false when this checker has no exact geometry
+  /// (the radius test). Relations' gaps in the fcl modes.
+  virtual bool exactDistance(const std::vector<PlacedEntry>& /*entries*/, std::size_t /*index*/,
+                             const Candidate& /*candidate*/, double& /*distance*/) {
+    return false;
+  }
   /// True when every candidate this checker accepts also passes robosuite's radius test
   /// (strategy free_space may then prune with it).
   virtual bool includesRadiusTest() const { return false; }

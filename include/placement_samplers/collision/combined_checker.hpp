@@ -22,6 +22,10 @@ class CombinedChecker : public CollisionChecker {
   bool needsOrientation() const override;
   bool includesRadiusTest() const override;
 
+  /// The first checker's exact distance, else the second's.
+  bool exactDistance(const std::vector<PlacedEntry>& entries, std::size_t index,
+                     const Candidate& candidate, double& distance) override;
+
  private:
   std::unique_ptr<CollisionChecker> first_;
   std::unique_ptr<CollisionChecker> second_;

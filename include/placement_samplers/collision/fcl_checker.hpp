@@ -57,6 +57,10 @@ class FclChecker : public CollisionChecker {
   std::ptrdiff_t firstCollision(const std::vector<PlacedEntry>& entries,
                                 const Candidate& candidate) override;
   bool needsOrientation() const override { return true; }
+  /// The smallest signed distance between the candidate's shapes and the entry's (FCL's
+  /// distance apart, minus the penetration depth in contact).
+  bool exactDistance(const std::vector<PlacedEntry>& entries, std::size_t index,
+                     const Candidate& candidate, double& distance) override;
 
   double margin() const;
 

@@ -19,7 +19,9 @@ namespace ros_interface {
 /// uniform sampler's region ("regions": a thin translucent box for x_range/y_range, a TRIANGLE_LIST
 /// for other shapes) and its keep-out zones
 /// ("keep_out", red triangles), the support surfaces of surface regions ("surfaces", blue
-/// triangles with a label giving each one's index and clearance). Hidden objects are left out.
+/// triangles with a label giving each one's index and clearance), and a line from each object
+/// to the target of each of its relations ("relations": green when the relation holds, red when
+/// not). Hidden objects are left out.
 ///
 /// A simulated object that fell, or moved or turned by the physics tolerances or more, gets a
 /// red wire box around it ("physics") and a red label saying so ("cube: fell, moved 0.412 m,

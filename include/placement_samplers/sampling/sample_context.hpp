@@ -44,6 +44,11 @@ class SampleContext {
     return checker_.firstCollision(entries_, candidate);
   }
   bool needsOrientation() const { return checker_.needsOrientation(); }
+  /// The exact distance between @p candidate and entry @p index [m] (CollisionChecker::
+  /// exactDistance()); false under the radius test.
+  bool exactDistance(std::size_t index, const Candidate& candidate, double& distance) {
+    return checker_.exactDistance(entries_, index, candidate, distance);
+  }
   bool includesRadiusTest() const { return checker_.includesRadiusTest(); }
 
   /// Per-entry rejection counters, zeroed, sized for the current entries.

@@ -9,6 +9,7 @@
 
 #include "placement_samplers/sampling/placement_sampler.hpp"
 #include "placement_samplers/sampling/region.hpp"
+#include "placement_samplers/sampling/relations.hpp"
 #include "placement_samplers/sampling/surface_region.hpp"
 
 namespace placement_samplers {
@@ -66,6 +67,9 @@ struct UniformSamplerParams {
   /// identity); for a caller that computes its own from the angles its UniformSource is told
   /// (the Python module). Positions, draws and attempts are the same.
   bool orientations = true;
+  /// Where its objects go relative to fixtures and earlier objects (README, "Relations"):
+  /// position relations reject attempts, rotation relations set the turn.
+  std::vector<Relation> relations;
 };
 
 /// robosuite's UniformRandomSampler: rejection sampling of x and y in ranges around a
@@ -157,6 +161,9 @@ class UniformRandomSampler : public PlacementSampler {
     std::int16_t restPose = ObjectPlacement::kUpright;  ///< a pose entry's index
     bool usable = true;   ///< a pose entry the region has room for (else its attempts fail)
     std::string problem;  ///< why not
+    /// The indices of the relations that apply to the object (a pose entry: its object's).
+    std::vector<std::uint16_t> relations;
+    double heading0 = 0.0;  ///< the heading of the object's initial orientation [rad]
   };
 
   Eigen::Quaterniond sampleOrientation(Engine& engine, const ObjectModel& object) const;
@@ -175,13 +182,38 @@ class UniformRandomSampler : public PlacementSampler {
   }
   bool placeOne(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
                 bool onTop) const;
-  /// placeOne() in a rectangle, drawing from @p draws.
-  template <class Draws>
+  /// placeOne() in a rectangle, drawing from @p draws; @p relations (kRelated) tests the
+  /// position relations and turns the object (relation_placement.cpp).
+  template <bool kRelated, class Draws>
   bool placeInRectangle(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
-                        bool onTop, Draws& draws) const;
+                        bool onTop, Draws& draws, PlacementRelations* relations) const;
+  /// Checks the relations (constructor; relation_placement.cpp).
+  void checkRelations(const std::string& where) const;
+  /// The relations that apply to @p entry's object (addObjects()).
+  /// @throw ConfigError when two of them set its yaw, or it has no heading to turn
+  void bindRelations(Entry& entry) const;
+  /// Resolves @p entry's relations in this scene; the centres are drawn from the box @p lo ..
+  /// @p hi [m] (world; lo > hi: not known). False, after fail(), when a target is not in the
+  /// scene or a rotation relation cannot hold.
+  bool resolveRelations(SampleContext& context, const Entry& entry, const Eigen::Vector2d& lo,
+                        const Eigen::Vector2d& hi, PlacementRelations& out) const;
+  /// At attempt kRelationProbeAttempts of a placement loop: false, after fail(), when a position
+  /// relation cannot hold anywhere in @p relations' box.
+  bool relationsPossible(SampleContext& context, const ObjectModel& object,
+                         const PlacementRelations& relations) const;
+  /// True when every position relation holds for @p candidate (its pose and posed object): the
+  /// disks' gaps, or in the fcl modes (@p relations.exact) the shapes' exact distances; counts
+  /// the first that does not.
+  bool relationsHold(SampleContext& context, PlacementRelations& relations,
+                     const Candidate& candidate) const;
+  /// The orientation of @p object at @p p: the sampler's rotation draw, or the one of a
+  /// rotation relation (README, "Relations").
+  Eigen::Quaterniond relatedOrientation(Engine& engine, const ObjectModel& object,
+                                        const Eigen::Vector2d& p,
+                                        const PlacementRelations* relations) const;
   /// placeOne() for a region shape or keep-out zones (shaped_placement.cpp).
   bool placeOneShaped(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
-                      bool onTop) const;
+                      bool onTop, PlacementRelations* relations) const;
   /// The entry of @p object without its resting poses: ranges and draws (sampler_entries.cpp).
   /// @throw ConfigError when the region leaves it no room
   Entry makeEntry(const ObjectPtr& object);
@@ -193,10 +225,10 @@ class UniformRandomSampler : public PlacementSampler {
   void addRestingPoses(Entry& entry);
   /// placeOne() under resting: stable (resting_placement.cpp).
   bool placeOneResting(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
-                       bool onTop) const;
+                       bool onTop, PlacementRelations* relations) const;
   /// placeOne() for a surface region (surface_placement.cpp).
-  bool placeOnSurface(SampleContext& context, const Entry& entry,
-                      const Eigen::Vector3d& base) const;
+  bool placeOnSurface(SampleContext& context, const Entry& entry, const Eigen::Vector3d& base,
+                      PlacementRelations* relations) const;
   /// The draws of @p entry's object on @p target's surfaces, made once per thread and target
   /// pose; nullptr and @p error when there are none.
   const SurfaceDraw* surfaceDrawOn(SampleContext& context, const Entry& entry,
@@ -208,7 +240,8 @@ class UniformRandomSampler : public PlacementSampler {
   /// Records that @p object could not be placed in @p limit attempts; @p outside of them fell
   /// outside the inset region or into a keep-out zone. @return false
   bool failPlacement(SampleContext& context, const ObjectModel& object, std::uint32_t limit,
-                     const std::vector<std::uint32_t>* counts, std::uint32_t outside) const;
+                     const std::vector<std::uint32_t>* counts, std::uint32_t outside,
+                     const PlacementRelations* relations = nullptr) const;
   /// Records that the scene failed at @p object (nullptr: before any object) after
   /// @p attempts, with @p message; every placement loop fails through it. @return false
   bool fail(SampleContext& context, const ObjectModel* object, std::uint32_t attempts,

@@ -28,14 +28,18 @@ struct Violation {
     ReferenceMissing,  ///< its sampler's reference (@ref other) is not in the scene
     BadPose,           ///< a coordinate is not finite or too large, or the quaternion is zero
     RestPose,          ///< resting: stable, and in none of the object's resting poses
+    Relation,          ///< a relation of its sampler (@ref other: its target) does not hold by @ref
+                       ///< distance
   };
   Kind kind = Kind::Unknown;
   /// The object's sampler ("" for Unknown, Duplicate, BadPose).
   std::string sampler;
-  std::string other;      ///< Overlap: the object or fixture; ReferenceMissing: the reference
-  std::string check;      ///< Overlap: "radius", "fcl" or "radius_and_fcl"
-  double distance = 0.0;  ///< OutsideRegion, Height: by how much [m]
-  std::string message;    ///< the whole sentence
+  std::string other;  ///< Overlap: the object or fixture; ReferenceMissing: the reference
+  std::string check;  ///< Overlap: "radius", "fcl" or "radius_and_fcl"
+  /// OutsideRegion, Height: by how much [m]; Relation: the gap [m] (next_to, away_from) or how
+  /// far the yaw is off [rad] (align_with, face)
+  double distance = 0.0;
+  std::string message;  ///< the whole sentence
 };
 
 /// The verdict on one object.
@@ -73,8 +77,9 @@ struct ValidationOptions {
 /// @p generator could sample: each object inside its uniform sampler's x-y region around the
 /// resolved reference (after the boundary shrink), at the sampler's height within the
 /// tolerance, and, when its sampler checks placements, overlapping no fixture and no object
-/// placed before it in sampling order under the request's check. Named references resolve
-/// against the fixtures and the given poses, as in sampling. Orientations are not checked.
+/// placed before it in sampling order under the request's check, and every relation of its
+/// sampler holding (check_relations.hpp). Named references resolve against the fixtures and the
+/// given poses, as in sampling. Orientations are not checked, but by align_with and face.
 /// Objects the configuration hides (`hide`) may be left out: a real scene does not hold them.
 /// @throw RequestError when a tolerance is negative or not finite, or when @p poses has more
 /// than limits::kValidatedPlacements poses
@@ -83,7 +88,7 @@ SceneVerdict validateScene(const SceneGenerator& generator, const PreparedReques
                            const ValidationOptions& options = {});
 
 /// The kind's name in outputs: "outside_region", "overlap", "height", "unknown_object",
-/// "missing_object", "duplicate", "reference_missing" or "bad_pose".
+/// "missing_object", "duplicate", "reference_missing", "bad_pose", "rest_pose" or "relation".
 const char* violationKindName(Violation::Kind kind);
 
 }  // namespace placement_samplers
