@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <vector>
 
-#include "ros/post_callback.hpp"
 #include "ros/thread_priority.hpp"
 
 namespace placement_samplers {
@@ -61,6 +60,7 @@ SampleAction::~SampleAction() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
+    restartTimer_.stop();
     for (const auto& goal : goals_) {
       goal->progress.cancel = true;
     }
@@ -99,9 +99,20 @@ void SampleAction::restart() {
     if (stopping_ || active) {
       return;
     }
+    const auto since = std::chrono::steady_clock::now() - lastResult_;
+    if (since < kResultGrace) {
+      scheduleRestart(kResultGrace - since);
+      return;
+    }
   }
   // No goal is active and none can arrive meanwhile: goals arrive on this queue.
   makeServer();
+}
+
+void SampleAction::scheduleRestart(std::chrono::steady_clock::duration delay) {
+  restartTimer_ = handle_.createWallTimer(
+      ros::WallDuration(std::chrono::duration<double>(delay).count()),
+      [this](const ros::WallTimerEvent&) { restart(); }, true);
 }
 
 void SampleAction::onGoal(GoalHandle handle) {
@@ -193,11 +204,12 @@ void SampleAction::run(const std::shared_ptr<Goal>& goal) {
   }
   std::lock_guard<std::mutex> lock(mutex_);
   goal->done = true;
+  lastResult_ = std::chrono::steady_clock::now();
   if (restartPending_ && !stopping_ &&
       std::none_of(goals_.begin(), goals_.end(),
                    [](const std::shared_ptr<Goal>& g) { return !g->done; })) {
     restartPending_ = false;
-    postCallback(handle_.getCallbackQueue(), [this] { restart(); });
+    scheduleRestart(kResultGrace);
   }
 }
 

@@ -51,10 +51,14 @@ class SampleAction {
   /// Advertises ~sample and starts sending feedback.
   void start();
 
-  /// Registers ~sample again (a new master): now when no goal is active, else when the last
-  /// active goal has its result (its handle belongs to the registered server). Call it on the
-  /// queue of @p handle, where goals arrive.
+  /// Registers ~sample again (a new master): when no goal is active and the last result went
+  /// out kResultGrace ago (a goal's handle and its result belong to the registered server;
+  /// unregistering drops a result still queued for sending). Call it on the queue of
+  /// @p handle, where goals arrive.
   void restart();
+
+  /// How long a result gets to reach its client before ~sample registers again.
+  static constexpr std::chrono::milliseconds kResultGrace{1000};
 
  private:
   using Server = actionlib::ActionServer<SampleScenesAction>;
@@ -63,6 +67,8 @@ class SampleAction {
 
   /// A new server, the old one's registrations dropped; on the handle's queue.
   void makeServer();
+  /// restart() on the handle's queue after @p delay; mutex_ held.
+  void scheduleRestart(std::chrono::steady_clock::duration delay);
   void onGoal(GoalHandle handle);
   void onCancel(GoalHandle handle);
   void run(const std::shared_ptr<Goal>& goal);
@@ -81,7 +87,9 @@ class SampleAction {
   std::list<std::shared_ptr<Goal>> goals_;  // accepted and not yet finished, oldest first
   unsigned running_ = 0;                    // goals sampling now
   bool stopping_ = false;
-  bool restartPending_ = false;  // restart() waits for the active goals
+  bool restartPending_ = false;                       // restart() waits for the active goals
+  std::chrono::steady_clock::time_point lastResult_;  // when the last goal finished
+  ros::WallTimer restartTimer_;  // restart() again once the last result had its time
   std::thread feedback_;
 };
 
