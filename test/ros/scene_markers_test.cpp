@@ -29,6 +29,9 @@ std::map<std::string, std::vector<const Marker*>> byNamespace(
   }
   return out;
 }
+/// The pointers point into the array: a temporary one would leave them dangling.
+std::map<std::string, std::vector<const Marker*>> byNamespace(
+    visualization_msgs::MarkerArray&& array) = delete;
 
 /// The label whose text starts with @p name, or null.
 const Marker* label(const visualization_msgs::MarkerArray& array, const std::string& name) {
@@ -171,8 +174,8 @@ TEST(SceneMarkers, CheckedObjectBeyondTheTolerancesIsOutlined) {
   SceneResult scene = generator.sampleScene(request, 3, 0);
   ASSERT_TRUE(scene.success);
   ASSERT_FALSE(scene.simulated);
-  EXPECT_EQ(byNamespace(makeSceneMarkers(request, scene, "world", ros::Time(1.0))).count("physics"),
-            0u);
+  const auto unsimulated = makeSceneMarkers(request, scene, "world", ros::Time(1.0));
+  EXPECT_EQ(byNamespace(unsimulated).count("physics"), 0u);
 
   // As a check would report it: the cube moved 5 cm and turned 0.3 rad, the ball stayed.
   scene.simulated = true;
@@ -214,7 +217,8 @@ samplers:
   const PreparedRequest request = generator.prepare(SampleRequest());
   const SceneResult scene = generator.sampleScene(request, 1, 0);
   ASSERT_TRUE(scene.success);
-  auto ns = byNamespace(makeSceneMarkers(request, scene, "world", ros::Time(1.0)));
+  const auto array = makeSceneMarkers(request, scene, "world", ros::Time(1.0));
+  auto ns = byNamespace(array);
   ASSERT_EQ(ns["ground"].size(), 1u);
   const Marker& ground = *ns["ground"][0];
   EXPECT_EQ(ground.type, Marker::CUBE);
