@@ -3,88 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <mutex>
-#include <stdexcept>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 
 #include "collision/fcl_compat.hpp"
+#include "collision/fcl_geometry.hpp"
 #include "placement_samplers/collision/make_collision_checker.hpp"
-#include "placement_samplers/text.hpp"
 
 namespace placement_samplers {
 namespace {
 
 using fcl_compat::Body;
 using fcl_compat::GeometryPtr;
-
-/// BVHs of meshes, built once per Mesh for the whole process and shared by every checker:
-/// FCL only reads an OBBRSS model during queries. Keyed by address, checked through a weak
-/// pointer so that a new mesh at a freed address is not mistaken for the old one.
-class MeshGeometryCache {
- public:
-  GeometryPtr get(const std::shared_ptr<const Mesh>& mesh) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = entries_.find(mesh.get());
-    if (it != entries_.end() && it->second.first.lock() == mesh) {
-      return it->second.second;
-    }
-    for (auto e = entries_.begin(); e != entries_.end();) {
-      e = e->second.first.expired() ? entries_.erase(e) : std::next(e);
-    }
-    auto model = std::make_shared<fcl_compat::MeshModel>();
-    std::vector<fcl_compat::Vector3> vertices(mesh->vertices.begin(), mesh->vertices.end());
-    std::vector<fcl_compat::Triangle> triangles;
-    triangles.reserve(mesh->triangles.size());
-    for (const Eigen::Vector3i& t : mesh->triangles) {
-      triangles.emplace_back(t[0], t[1], t[2]);
-    }
-    if (model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size())) !=
-            fcl::BVH_OK ||
-        model->addSubModel(vertices, triangles) != fcl::BVH_OK ||
-        model->endModel() != fcl::BVH_OK) {
-      throw std::runtime_error("FCL could not build a BVH for mesh " + quoteText(mesh->source));
-    }
-    model->computeLocalAABB();
-    entries_[mesh.get()] = {mesh, model};
-    return model;
-  }
-
- private:
-  std::mutex mutex_;
-  std::map<const Mesh*, std::pair<std::weak_ptr<const Mesh>, GeometryPtr>> entries_;
-};
-
-MeshGeometryCache& meshGeometryCache() {
-  static MeshGeometryCache cache;
-  return cache;
-}
-
-GeometryPtr makeGeometry(const Shape& shape) {
-  GeometryPtr g;
-  switch (shape.type) {
-    case ShapeType::Box:
-      g = std::make_shared<fcl_compat::Box>(shape.size);
-      break;
-    case ShapeType::Cylinder:  // FCL: axis z, centred, lz = full length, as Shape
-      g = std::make_shared<fcl_compat::Cylinder>(shape.radius, shape.length);
-      break;
-    case ShapeType::Sphere:
-      g = std::make_shared<fcl_compat::Sphere>(shape.radius);
-      break;
-    case ShapeType::Capsule:  // FCL: lz = distance between the cap centres, as Shape
-      g = std::make_shared<fcl_compat::Capsule>(shape.radius, shape.length);
-      break;
-    case ShapeType::Mesh:
-      if (!shape.mesh || shape.mesh->triangles.empty()) {
-        throw std::invalid_argument("mesh shape without triangles");
-      }
-      return meshGeometryCache().get(shape.mesh);
-  }
-  g->computeLocalAABB();
-  return g;
-}
 
 /// True when @p q turns only about the world z axis: horizontal distances from the origin, and
 /// so a horizontal radius, are unchanged.
@@ -141,7 +72,7 @@ struct FclChecker::Impl {
       slot = std::make_unique<ObjectGeometry>();
       slot->object = &object;
       for (const Shape& shape : object.shapes) {
-        slot->geometries.push_back(makeGeometry(shape));
+        slot->geometries.push_back(fcl_compat::makeGeometry(shape));
         slot->poses.push_back(shape.pose);
       }
       initInstance(*slot, slot->candidate);
@@ -232,47 +163,46 @@ struct FclChecker::Impl {
     instance.bodiesPlaced = true;
   }
 
+  /// The deepest penetration of two bodies [m] when FCL's yes/no test finds them in contact
+  /// (then asked for every contact), else nullopt.
+  std::optional<double> contactDepth(const Body& a, const Body& b) {
+    result.clear();
+    fcl::collide(&a, &b, boolRequest, result);
+    if (!result.isCollision()) {
+      return std::nullopt;
+    }
+    result.clear();
+    fcl::collide(&a, &b, depthRequest, result);
+    double depth = 0.0;
+    for (std::size_t i = 0; i < result.numContacts(); ++i) {
+      depth = std::max(depth, result.getContact(i).penetration_depth);
+    }
+    return depth;
+  }
+
+  /// FCL's distance of two bodies apart [m].
+  double apart(const Body& a, const Body& b) {
+    distance.clear();
+    fcl::distance(&a, &b, distanceRequest, distance);
+    return distance.min_distance;
+  }
+
   /// True when the two bodies come closer than the margin (penetrate, with a zero margin);
   /// @p limit: the signed distance below which they do.
   bool tooClose(const Body& a, const Body& b, double limit) {
-    result.clear();
-    fcl::collide(&a, &b, boolRequest, result);
-    if (result.isCollision()) {
-      result.clear();
-      fcl::collide(&a, &b, depthRequest, result);
-      double depth = 0.0;
-      for (std::size_t i = 0; i < result.numContacts(); ++i) {
-        depth = std::max(depth, result.getContact(i).penetration_depth);
-      }
+    if (const std::optional<double> depth = contactDepth(a, b)) {
       // Signed distance -depth against margin - tolerance: with a zero margin a contact
       // counts only beyond the tolerance; with a positive one any contact counts.
-      return -depth < limit;
+      return -*depth < limit;
     }
-    if (limit <= 0.0) {
-      return false;
-    }
-    distance.clear();
-    fcl::distance(&a, &b, distanceRequest, distance);
-    return distance.min_distance < limit;
+    return limit > 0.0 && apart(a, b) < limit;
   }
 
   /// The signed distance of two bodies [m]: apart, FCL's distance; in contact, minus the
   /// deepest contact's penetration.
   double signedDistance(const Body& a, const Body& b) {
-    result.clear();
-    fcl::collide(&a, &b, boolRequest, result);
-    if (result.isCollision()) {
-      result.clear();
-      fcl::collide(&a, &b, depthRequest, result);
-      double depth = 0.0;
-      for (std::size_t i = 0; i < result.numContacts(); ++i) {
-        depth = std::max(depth, result.getContact(i).penetration_depth);
-      }
-      return -depth;
-    }
-    distance.clear();
-    fcl::distance(&a, &b, distanceRequest, distance);
-    return distance.min_distance;
+    const std::optional<double> depth = contactDepth(a, b);
+    return depth ? -*depth : apart(a, b);
   }
 
   enum class Verdict { Clear, Hit, Unknown };
