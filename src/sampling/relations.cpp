@@ -121,15 +121,17 @@ bool relationHolds(const Relation& relation, const RelationTarget& target, const
   if (relation.isPosition()) {
     return PositionTest(relation, 0, target).holds(p, radius);
   }
-  double want = target.heading;
-  double period = relation.period;
+  return relationAngleError(relation, target, p, orientation) <=
+         relation.tolerance + kRelationAngleSlack;
+}
+
+double relationAngleError(const Relation& relation, const RelationTarget& target,
+                          const Eigen::Vector2d& p, const Eigen::Quaterniond& orientation) {
   if (relation.kind == Relation::Kind::Face) {
     const Eigen::Vector2d d = target.centre - p;
-    want = std::atan2(d.y(), d.x());
-    period = 2 * M_PI;
+    return angleApart(headingOf(orientation), std::atan2(d.y(), d.x()), 2 * M_PI);
   }
-  return angleApart(headingOf(orientation), want, period) <=
-         relation.tolerance + kRelationAngleSlack;
+  return angleApart(headingOf(orientation), target.heading, relation.period);
 }
 
 namespace {

@@ -73,15 +73,7 @@ std::vector<RelationMiss> checkRelations(const UniformRandomSampler& sampler,
         out << "the gap is " << miss.value << " m";
       }
     } else {
-      const double heading = headingOf(candidate.orientation);
-      double want = t.heading;
-      double period = r.period;
-      if (r.kind == Relation::Kind::Face) {
-        const Eigen::Vector2d d = t.centre - p;
-        want = std::atan2(d.y(), d.x());
-        period = 2 * M_PI;
-      }
-      miss.value = angleApart(heading, want, period);
+      miss.value = relationAngleError(r, t, p, candidate.orientation);
       if (miss.value <= r.tolerance + kRelationAngleSlack) {
         continue;
       }

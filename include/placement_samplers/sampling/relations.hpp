@@ -144,6 +144,11 @@ std::string infeasibleReason(const PositionTest& test, double least, double most
 /// align_with and face outside sampling (validation, display) [rad].
 constexpr double kRelationAngleSlack = 1e-9;
 
+/// How far the yaw of an object at @p p with @p orientation is from what align_with or face
+/// wants of it against @p target [rad] (modulo the relation's period; face: 2 pi).
+double relationAngleError(const Relation& relation, const RelationTarget& target,
+                          const Eigen::Vector2d& p, const Eigen::Quaterniond& orientation);
+
 /// True when @p relation holds for an object of horizontal radius @p radius [m] at @p p with
 /// @p orientation, against @p target: PositionTest::holds() for next_to and away_from, the yaw
 /// within the tolerance (plus kRelationAngleSlack) for align_with and face.
