@@ -391,6 +391,63 @@ TEST(Relations, PositionsAreUniformOverTheAllowedSet) {
       "{next_to: post, side: front, distance: [0.0, 0.15]}");
 }
 
+/// In the fcl modes the exact gap depends on the turn, drawn before the relation tests: the
+/// accepted (x, y, yaw) are those of the sampler without the relation, filtered by the exact
+/// gap at that pose.
+TEST(Relations, FclPosesAreUniformOverTheAllowedSet) {
+  const std::string head = R"(
+collision_check: fcl
+objects:
+  plate: {shape: cylinder, radius: 0.1, length: 0.02}
+  stick: {shape: box, size: [0.3, 0.02, 0.02]}
+fixtures:
+  - {name: disc, object: plate, position: [0.0, 0.0, 0.8]}
+samplers:
+  - {name: S, objects: [stick], x_range: [-0.4, 0.4], y_range: [-0.4, 0.4],
+     reference_pos: [0, 0, 0.8])";
+  const auto related =
+      buildFromYaml(head + ", relations: [{next_to: disc, side: front, distance: [0.0, 0.05]}]}\n");
+  const auto free = buildFromYaml(head + "}\n");
+  const Scenes a = scenes(related, 20000, 21);
+  const Scenes b = scenes(free, 200000, 22);
+  const UniformRandomSampler& sampler =
+      dynamic_cast<const UniformRandomSampler&>(*related->root->children()[0].sampler);
+  const FixtureSpec& disc = related->fixtures[0];
+  const std::vector<PlacedEntry> entries{
+      PlacedEntry("disc", disc.object.get(), disc.position, disc.orientation, true)};
+  const PositionTest test(sampler.params().relations[0], 0, relationTarget(entries[0]));
+  std::unique_ptr<CollisionChecker> fcl = makeCollisionChecker(CollisionMode::Fcl, 0.0);
+  fcl->added(entries, 0);
+  auto holds = [&](const ObjectPlacement& p) {
+    double gap = 0.0;
+    EXPECT_TRUE(fcl->exactDistance(entries, 0, {p.object, p.position, p.orientation}, gap));
+    return test.holdsGap(p.position.head<2>(), gap);
+  };
+  std::vector<double> values[2][3];  // [related, filtered][x, y, yaw]
+  for (int k = 0; k < 2; ++k) {
+    for (const SceneResult& r : (k == 0 ? a : b).results) {
+      ASSERT_EQ(r.success, k == 0 || r.success);
+      if (!r.success) {
+        continue;
+      }
+      const ObjectPlacement& p = r.placements[0];
+      if (k == 0) {
+        ASSERT_TRUE(holds(p)) << "scene " << r.index;
+      } else if (!holds(p)) {
+        continue;
+      }
+      values[k][0].push_back(p.position.x());
+      values[k][1].push_back(p.position.y());
+      values[k][2].push_back(headingOf(p.orientation));
+    }
+  }
+  ASSERT_GT(values[1][0].size(), 2000u);
+  const double critical = ksCritical2(values[0][0].size(), values[1][0].size());
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(ksTwoSample(values[0][i], values[1][i]), critical) << "coordinate " << i;
+  }
+}
+
 TEST(Relations, FaceDrawsOneTurnWithinTheTolerance) {
   // One object, every attempt accepted: x, y, then U(-tolerance, tolerance) after the angle
   // towards the target.
