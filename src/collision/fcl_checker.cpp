@@ -343,10 +343,20 @@ bool FclChecker::exactDistance(const std::vector<PlacedEntry>& entries, std::siz
   }
   Impl::ObjectGeometry& g = impl_->geometryOf(*candidate.object);
   Impl::place(g, g.candidate, candidate.position, candidate.orientation);
-  Impl::placeBodies(g, g.candidate, impl_->margin);
   distance = std::numeric_limits<double>::infinity();
   for (const std::unique_ptr<Body>& mine : g.candidate.bodies) {
     for (const std::unique_ptr<Body>& other : target->bodies) {
+      // Two upright prisms have an exact distance of their own (FCL's of cylinders is up to
+      // 0.1 mm above the truth); two rectangles apart in x-y, and other shapes, ask FCL.
+      if (mine->prism->kind != detail::UprightPrism::Kind::None &&
+          other->prism->kind != detail::UprightPrism::Kind::None) {
+        const detail::SignedDistanceBounds d = detail::prismDistance(*mine->prism, *other->prism);
+        if (d.lower == d.upper) {
+          distance = std::min(distance, d.lower);
+          continue;
+        }
+      }
+      Impl::placeBodies(g, g.candidate, impl_->margin);
       distance = std::min(distance, impl_->signedDistance(*mine, *other));
     }
   }
