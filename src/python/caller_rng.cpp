@@ -79,16 +79,7 @@ RngDraws::RngDraws(CallerRng& rng) : rng_(rng) {
   if (rng_.kind_ == CallerRng::Kind::Pcg64) {
     std::array<std::uint64_t, 4> words{};
     if (!readPcg64State(rng_.bitGenerator_.ptr(), rng_.bitgen_, words)) {
-      if (locked_) {
-        locked_ = false;
-        PyObject* type = nullptr;
-        PyObject* value = nullptr;
-        PyObject* traceback = nullptr;
-        PyErr_Fetch(&type, &value, &traceback);
-        PyObject* done = PyObject_CallNoArgs(rng_.release_.ptr());
-        Py_XDECREF(done);
-        PyErr_Restore(type, value, traceback);
-      }
+      releaseKeepingError();
       throw py::error_already_set();
     }
     engine_ = Pcg64::fromState(words[0], words[1], words[2], words[3]);
@@ -111,6 +102,20 @@ RngDraws::~RngDraws() {
     PyObject* done = PyObject_CallNoArgs(rng_.release_.ptr());
     Py_XDECREF(done);
   }
+  PyErr_Restore(type, value, traceback);
+}
+
+void RngDraws::releaseKeepingError() {
+  if (!locked_) {
+    return;
+  }
+  locked_ = false;
+  PyObject* type = nullptr;
+  PyObject* value = nullptr;
+  PyObject* traceback = nullptr;
+  PyErr_Fetch(&type, &value, &traceback);
+  PyObject* done = PyObject_CallNoArgs(rng_.release_.ptr());
+  Py_XDECREF(done);
   PyErr_Restore(type, value, traceback);
 }
 
@@ -152,16 +157,7 @@ void RngDraws::finish() {
     const std::array<std::uint64_t, 4> words = engine_->stateWords();
     engine_.reset();
     if (!writePcg64State(rng_.bitGenerator_.ptr(), rng_.bitgen_, words)) {
-      if (locked_) {
-        locked_ = false;
-        PyObject* type = nullptr;
-        PyObject* value = nullptr;
-        PyObject* traceback = nullptr;
-        PyErr_Fetch(&type, &value, &traceback);
-        PyObject* done = PyObject_CallNoArgs(rng_.release_.ptr());
-        Py_XDECREF(done);
-        PyErr_Restore(type, value, traceback);
-      }
+      releaseKeepingError();
       throw py::error_already_set();
     }
   }

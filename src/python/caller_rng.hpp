@@ -81,6 +81,8 @@ class RngDraws {
   /// uniform() with numpy's checks and the other kinds of rng.
   double uniformChecked(double low, double high);
   void lock();
+  /// Releases the lock if held, the Python error being raised kept as it is.
+  void releaseKeepingError();
   CallerRng& rng_;
   std::optional<Pcg64> engine_;
   bool locked_ = false;

@@ -110,13 +110,8 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
         continue;
       }
     }
-    if (check) {
-      const std::ptrdiff_t blocker = context.firstCollision(candidate);
-      if (blocker != CollisionChecker::kNone) {
-        ++(*counts)[static_cast<std::size_t>(blocker)];
-        ++collided;
-        continue;
-      }
+    if (check && collidesCounted(context, candidate, *counts, collided)) {
+      continue;
     }
     if (!orientFirst && (relations == nullptr || !relations->exact)) {
       candidate.orientation = sampleOrientation(engine, posed);

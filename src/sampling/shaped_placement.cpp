@@ -125,13 +125,8 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
         continue;
       }
     }
-    if (check) {
-      const std::ptrdiff_t blocker = context.firstCollision(candidate);
-      if (blocker != CollisionChecker::kNone) {
-        ++(*counts)[static_cast<std::size_t>(blocker)];
-        ++collided;
-        continue;
-      }
+    if (check && collidesCounted(context, candidate, *counts, collided)) {
+      continue;
     }
     if (!orientFirst && (relations == nullptr || !relations->exact)) {
       candidate.orientation =

@@ -248,13 +248,8 @@ bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& e
         continue;
       }
     }
-    if (check) {
-      const std::ptrdiff_t blocker = context.firstCollision(candidate);
-      if (blocker != CollisionChecker::kNone) {
-        ++(*counts)[static_cast<std::size_t>(blocker)];
-        ++collided;
-        continue;
-      }
+    if (check && collidesCounted(context, candidate, *counts, collided)) {
+      continue;
     }
     if (!orientFirst && (relations == nullptr || !relations->exact)) {
       candidate.orientation = relatedOrientation(engine, object, p, relations);

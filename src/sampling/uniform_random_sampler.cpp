@@ -309,4 +309,16 @@ bool UniformRandomSampler::failPlacement(SampleContext& context, const ObjectMod
   return false;
 }
 
+bool UniformRandomSampler::collidesCounted(SampleContext& context, const Candidate& candidate,
+                                           std::vector<std::uint32_t>& counts,
+                                           std::uint32_t& collided) {
+  const std::ptrdiff_t blocker = context.firstCollision(candidate);
+  if (blocker == CollisionChecker::kNone) {
+    return false;
+  }
+  ++counts[static_cast<std::size_t>(blocker)];
+  ++collided;
+  return true;
+}
+
 }  // namespace placement_samplers

@@ -249,6 +249,10 @@ class UniformRandomSampler : public PlacementSampler {
   /// fail() for a request whose time ran out while placing @p object. @return false
   bool failOutOfTime(SampleContext& context, const ObjectModel& object,
                      std::uint32_t attempts) const;
+  /// The collision test of an attempt in the shaped, resting and surface loops: true when
+  /// @p candidate is blocked, its blocker counted in @p counts and the attempt in @p collided.
+  static bool collidesCounted(SampleContext& context, const Candidate& candidate,
+                              std::vector<std::uint32_t>& counts, std::uint32_t& collided);
   /// True when a disk of radius @p margin at @p local (relative to the reference; @p offset is
   /// the reference's x-y) reaches into one of the keep-out zones, in order.
   bool inKeepOut(const Eigen::Vector2d& local, const Eigen::Vector2d& offset, double margin) const {
