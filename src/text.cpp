@@ -1,5 +1,7 @@
 #include "placement_samplers/text.hpp"
 
+#include <sstream>
+
 namespace placement_samplers {
 
 std::size_t utf8Sequence(std::string_view text, std::size_t i) {
@@ -94,6 +96,12 @@ std::string countText(std::uint64_t count, std::string_view noun) {
     out += 's';
   }
   return out;
+}
+
+std::string rangeText(double a, double b) {
+  std::ostringstream out;
+  out << "[" << a << ", " << b << "]";
+  return out.str();
 }
 
 }  // namespace placement_samplers

@@ -24,4 +24,7 @@ std::string quoteText(std::string_view text);
 /// "2 fixtures", "0 attempts". @p noun is the singular of a noun whose plural adds "s".
 std::string countText(std::uint64_t count, std::string_view noun);
 
+/// "[a, b]": a range [m] or [rad] as errors print it (stream formatting, 6 significant digits).
+std::string rangeText(double a, double b);
+
 }  // namespace placement_samplers

@@ -15,9 +15,7 @@ namespace placement_samplers {
 namespace {
 
 std::string rangeText(const Eigen::Vector2d& r) {
-  std::ostringstream out;
-  out << "[" << r[0] << ", " << r[1] << "]";
-  return out.str();
+  return placement_samplers::rangeText(r[0], r[1]);
 }
 
 }  // namespace
