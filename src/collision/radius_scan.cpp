@@ -24,7 +24,7 @@ namespace detail {
 void RadiusColumns::push(double x, double y, double z, double radius, double top) {
   if (size_ == x_.size()) {
     const std::size_t grown = size_ + 8;
-    for (std::vector<double>* column : {&x_, &y_, &z_, &radius_, &top_}) {
+    for (CacheLineVector<double>* column : {&x_, &y_, &z_, &radius_, &top_}) {
       column->resize(grown, std::numeric_limits<double>::quiet_NaN());
     }
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "collision/radius_test.hpp"
+#include "sampling/cache_line.hpp"
 
 namespace placement_samplers {
 namespace detail {
@@ -14,7 +15,7 @@ namespace detail {
 /// What robosuite's test reads of each entry, one column per value, in entry order. The
 /// columns are sized to whole blocks of 8 so that a kernel may load past size(); lanes past
 /// size() are masked off, never compared.
-class RadiusColumns {
+class alignas(kCacheLine) RadiusColumns {
  public:
   void clear() { size_ = 0; }
   /// Appends an entry: position [m], horizontal radius [m], top offset z [m].
@@ -29,7 +30,7 @@ class RadiusColumns {
 
  private:
   std::size_t size_ = 0;
-  std::vector<double> x_, y_, z_, radius_, top_;
+  CacheLineVector<double> x_, y_, z_, radius_, top_;
 };
 
 /// The scalar kernel, inline: the lowest index whose entry overlaps @p p under

@@ -18,6 +18,7 @@
 #include "placement_samplers/text.hpp"
 #include "placement_samplers/geometry/unit_quaternion.hpp"
 #include "placement_samplers/sampling/packing_bound.hpp"
+#include "sampling/cache_line.hpp"
 #include "sampling/parallel.hpp"
 #include "sampling/request_surfaces.hpp"
 #include "sampling/scene_worker.hpp"
@@ -336,7 +337,11 @@ void SceneGenerator::sampleInto(const PreparedRequest& request, std::uint64_t se
     // Each simulating thread holds MuJoCo data of its own: as many as the memory allows.
     threads = request.physicsModel->simulatingThreads(threads);
   }
-  std::atomic<std::uint64_t> next{0};
+  // The next scene to take, alone on its line: the threads write it for each chunk, and the
+  // locals beside it are read on every scene.
+  struct alignas(detail::kCacheLine) {
+    std::atomic<std::uint64_t> value{0};
+  } next;
   const auto deadline = request.deadline;
   auto work = [&] {
     Worker worker(request, config_->collisionMargin, threads);
@@ -346,14 +351,14 @@ void SceneGenerator::sampleInto(const PreparedRequest& request, std::uint64_t se
     // scene takes milliseconds: one at a time, so that the threads finish the scenes nearly
     // in order (a cancelled range keeps the scenes before the first one not sampled).
     const std::uint64_t chunk = request.physicsModel ? 1 : Worker::kChunk;
-    for (std::uint64_t begin = next.fetch_add(chunk); begin < count;
-         begin = next.fetch_add(chunk)) {
+    for (std::uint64_t begin = next.value.fetch_add(chunk); begin < count;
+         begin = next.value.fetch_add(chunk)) {
       const std::uint64_t end = std::min(count, begin + chunk);
       worker.runChunk(seed, first + begin, static_cast<std::size_t>(end - begin), results + begin);
     }
   };
   // An exception in any worker (out of memory) stops the others and reaches the caller.
-  detail::runOnThreads(threads, work, [&] { next = count; });
+  detail::runOnThreads(threads, work, [&] { next.value = count; });
 }
 
 }  // namespace placement_samplers
