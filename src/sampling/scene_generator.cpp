@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <utility>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -226,6 +227,35 @@ PreparedRequest SceneGenerator::prepare(const SampleRequest& request) const {
   return prepared;
 }
 
+namespace {
+
+/// The next scenes for a thread to sample, [first, second): a share of what is left, in
+/// multiples of @p chunk, from 64 chunks down to one. Large shares first write the counter
+/// that all threads share a few dozen times a batch instead of once per chunk (each write
+/// moves its line between the cores); one chunk at the end keeps the threads finishing
+/// together; 64 at most keep the scenes a cancel discards few (those after the first not
+/// sampled). @p chunk 1 (simulated scenes): one at a time. Empty when none is left.
+std::pair<std::uint64_t, std::uint64_t> takeScenes(std::atomic<std::uint64_t>& next,
+                                                   std::uint64_t count, std::uint64_t chunk,
+                                                   unsigned threads) {
+  constexpr std::uint64_t kMaxChunks = 64;
+  std::uint64_t begin = next.load(std::memory_order_relaxed);
+  for (;;) {
+    if (begin >= count) {
+      return {count, count};
+    }
+    const std::uint64_t left = count - begin;
+    const std::uint64_t chunks = chunk == 1 ? 1 : left / (4 * std::uint64_t{threads}) / chunk;
+    const std::uint64_t share = chunk * std::clamp<std::uint64_t>(chunks, 1, kMaxChunks);
+    const std::uint64_t end = begin + std::min(left, share);
+    if (next.compare_exchange_weak(begin, end, std::memory_order_relaxed)) {
+      return {begin, end};
+    }
+  }
+}
+
+}  // namespace
+
 bool wasCancelled(const SceneResult& scene) {
   return !scene.success && scene.message == kCancelledMessage;
 }
@@ -351,10 +381,15 @@ void SceneGenerator::sampleInto(const PreparedRequest& request, std::uint64_t se
     // scene takes milliseconds: one at a time, so that the threads finish the scenes nearly
     // in order (a cancelled range keeps the scenes before the first one not sampled).
     const std::uint64_t chunk = request.physicsModel ? 1 : Worker::kChunk;
-    for (std::uint64_t begin = next.value.fetch_add(chunk); begin < count;
-         begin = next.value.fetch_add(chunk)) {
-      const std::uint64_t end = std::min(count, begin + chunk);
-      worker.runChunk(seed, first + begin, static_cast<std::size_t>(end - begin), results + begin);
+    for (;;) {
+      const auto [begin, end] = takeScenes(next.value, count, chunk, threads);
+      if (begin == end) {
+        break;
+      }
+      for (std::uint64_t b = begin; b < end; b += chunk) {
+        const std::uint64_t e = std::min(end, b + chunk);
+        worker.runChunk(seed, first + b, static_cast<std::size_t>(e - b), results + b);
+      }
     }
   };
   // An exception in any worker (out of memory) stops the others and reaches the caller.
