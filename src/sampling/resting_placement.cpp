@@ -98,15 +98,11 @@ bool UniformRandomSampler::placeOneResting(SampleContext& context, const Entry& 
     // After the region and keep-out tests, with the pose's radius (resting: stable takes
     // position relations only: the orientation stays the sampler's).
     if (relations != nullptr) {
-      if (relations->exact) {
+      if (relations->exact && !orientFirst) {
         // The exact gaps need the orientation (drawn already in the fcl modes' attempts).
-        if (!orientFirst) {
-          candidate.orientation = sampleOrientation(engine, posed);
-        }
-        if (!relationsHold(context, *relations, candidate)) {
-          continue;
-        }
-      } else if (!relations->holds(candidate.position.head<2>(), posed.horizontalRadius)) {
+        candidate.orientation = sampleOrientation(engine, posed);
+      }
+      if (!relationsHold(context, *relations, candidate)) {
         continue;
       }
     }

@@ -118,10 +118,8 @@ bool UniformRandomSampler::placeOneShaped(SampleContext& context, const Entry& e
       if (relations->exact) {
         candidate.orientation =
             relatedOrientation(engine, object, candidate.position.head<2>(), relations);
-        if (!relationsHold(context, *relations, candidate)) {
-          continue;
-        }
-      } else if (!relations->holds(candidate.position.head<2>(), object.horizontalRadius)) {
+      }
+      if (!relationsHold(context, *relations, candidate)) {
         continue;
       }
     }

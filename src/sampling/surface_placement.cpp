@@ -241,10 +241,8 @@ bool UniformRandomSampler::placeOnSurface(SampleContext& context, const Entry& e
       // exact gaps need it.
       if (relations->exact) {
         candidate.orientation = relatedOrientation(engine, object, p, relations);
-        if (!relationsHold(context, *relations, candidate)) {
-          continue;
-        }
-      } else if (!relations->holds(p, object.horizontalRadius)) {
+      }
+      if (!relationsHold(context, *relations, candidate)) {
         continue;
       }
     }
