@@ -161,6 +161,19 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       continue;
     }
 
+    // Relations are tests of each attempt, as under rejection: the draws from the cells then stay
+    // uniform over the free positions where every relation holds.
+    const bool related = !entry.relations.empty();
+    PlacementRelations relations;
+    if (related && !resolveRelations(context, entry, lo + offset, hi + offset, relations)) {
+      return false;
+    }
+    // At kRelationProbeAttempts: false, after fail(), when a relation cannot hold in the box.
+    const auto relationsImpossible = [&](std::uint32_t attempt) {
+      return related && attempt == kRelationProbeAttempts &&
+             !relationsPossible(context, object, relations);
+    };
+
     // Rejections per entry for the failure message, zeroed at the first collision: most objects
     // are placed at their first attempt.
     std::vector<std::uint32_t>* counts = nullptr;
@@ -174,7 +187,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     // shrunk range itself.
     const auto attemptAt = [&](const Eigen::Vector2d& local, std::uint32_t attempt, bool inBox) {
       candidate.position.head<2>() = local + offset;
-      if (orientFirst) {
+      if (orientFirst && !related) {
         candidate.orientation = sampleOrientation(engine, object);
       }
       bool blocked = !inBox && shapeDepth(region, local) < margin;
@@ -183,6 +196,14 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
         blocked = keepOutBlocks(zone, zone.world ? Eigen::Vector2d(local + offset) : local, margin);
       }
       outside += blocked ? 1 : 0;
+      if (!blocked && related) {
+        // The fcl modes' exact gaps need the turn (face: towards the target from here).
+        if (relations.exact) {
+          candidate.orientation =
+              relatedOrientation(engine, object, candidate.position.head<2>(), &relations);
+        }
+        blocked = !relationsHold(context, relations, candidate);
+      }
       if (!blocked && check) {
         const std::ptrdiff_t blocker = context.firstCollision(candidate);
         if (blocker != CollisionChecker::kNone) {
@@ -197,7 +218,10 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       if (blocked) {
         return false;
       }
-      if (!orientFirst) {
+      if (related && !relations.exact) {
+        candidate.orientation =
+            relatedOrientation(engine, object, candidate.position.head<2>(), &relations);
+      } else if (!related && !orientFirst) {
         candidate.orientation = sampleOrientation(engine, object);
       }
       context.addPlacement(name(), candidate, attempt, params_.hides);
@@ -213,6 +237,9 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     bool placed = false;
     std::uint32_t attempt = 1;
     for (; attempt <= rejectionAttempts && !placed; ++attempt) {
+      if (relationsImpossible(attempt)) {
+        return false;
+      }
       const double x = uniform(engine, lo.x(), hi.x());
       const double y = uniform(engine, lo.y(), hi.y());
       placed = attemptAt(Eigen::Vector2d(x, y), attempt, plainRange);
@@ -220,8 +247,10 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     if (placed) {
       continue;
     }
+    const PlacementRelations* refusals = related ? &relations : nullptr;
     if (attempt > limit) {
-      return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+      return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside,
+                           refusals);
     }
 
     const CellKey key{radius, margin, z, bottom};
@@ -267,6 +296,9 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       if ((attempt & 1023u) == 0 && context.expired()) {
         return failOutOfTime(context, object, attempt - 1);
       }
+      if (relationsImpossible(attempt)) {
+        return false;
+      }
       int level = 0;
       std::size_t index = 0;
       const Eigen::Vector2d local = cells.draw(engine, level, index);
@@ -279,7 +311,8 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       }
     }
     if (!placed) {
-      return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside);
+      return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside,
+                           refusals);
     }
   }
   return true;

@@ -19,8 +19,9 @@ void UniformRandomSampler::checkRelations(const std::string& where) const {
     throw ConfigError(where + "relations: at most " + std::to_string(kMaxRelations) +
                       " relations, got " + std::to_string(relations.size()));
   }
-  if (params_.strategy != UniformSamplerParams::Strategy::Rejection) {
-    throw ConfigError(where + "relations take strategy rejection only");
+  if (params_.strategy == UniformSamplerParams::Strategy::Dense) {
+    // dense lays its objects out by its own rule, not by draws that a relation could refuse.
+    throw ConfigError(where + "relations take strategy rejection or free_space, not dense");
   }
   for (std::size_t i = 0; i < relations.size(); ++i) {
     const Relation& r = relations[i];

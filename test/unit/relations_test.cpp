@@ -140,7 +140,8 @@ samplers:
   - {name: S, objects: [cube], x_range: [-0.3, 0.3], y_range: [-0.3, 0.3], strategy: dense,
      relations: [{face: post}]}
 )"),
-            "samplers[0].relations: sampler 'S': relations take strategy rejection only");
+            "samplers[0].relations: sampler 'S': relations take strategy rejection or "
+            "free_space, not dense");
 }
 
 /// config/relations.yaml: every relation holds in every placed scene, by the validator, which
