@@ -29,9 +29,8 @@ struct CacheLineAllocator {
   T* allocate(std::size_t n) {
     return static_cast<T*>(::operator new (roundedBytes(n), std::align_val_t{kCacheLine}));
   }
-  void deallocate(T* p, std::size_t n) {
-    ::operator delete (p, roundedBytes(n), std::align_val_t{kCacheLine});
-  }
+  // The unsized form: clang before 19 declares the sized one only with -fsized-deallocation.
+  void deallocate(T* p, std::size_t /*n*/) { ::operator delete (p, std::align_val_t{kCacheLine}); }
 
   friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
   friend bool operator!=(const CacheLineAllocator&, const CacheLineAllocator&) { return false; }
