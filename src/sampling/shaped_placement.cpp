@@ -30,8 +30,8 @@ void UniformRandomSampler::checkShapes(const std::string& where) {
       throw ConfigError(where +
                         "region (surface) replaces x_range and y_range: give one or the other");
     }
-    if (params_.strategy != UniformSamplerParams::Strategy::Rejection) {
-      throw ConfigError(where + "region (surface) takes strategy rejection only");
+    if (params_.strategy == UniformSamplerParams::Strategy::Dense) {
+      throw ConfigError(where + "region (surface) takes strategy rejection or free_space");
     }
     const SurfaceRegion& s = *params_.surface;
     if (s.of.empty()) {

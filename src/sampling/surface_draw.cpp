@@ -76,6 +76,8 @@ std::optional<SurfaceDraw> SurfaceDraw::make(const std::vector<SupportSurface>& 
       std::vector<Eigen::Vector2d> triangles;
       try {
         const std::vector<Eigen::Vector2d> ccw = detail::counterClockwise(s.outer);
+        piece.outer = ccw;
+        piece.holes = s.holes;
         if (s.holes.empty() && isConvexPolygon(ccw)) {
           const std::vector<Eigen::Vector2d> inner =
               inset > 0.0 ? detail::insetConvex(ccw, inset) : ccw;
@@ -90,8 +92,6 @@ std::optional<SurfaceDraw> SurfaceDraw::make(const std::vector<SupportSurface>& 
               triangles.clear();
             }
             piece.rejects = true;
-            piece.outer = ccw;
-            piece.holes = s.holes;
           }
         }
       } catch (const ConfigError&) {
@@ -143,6 +143,30 @@ Eigen::Vector2d SurfaceDraw::draw(Engine& engine, std::size_t& surface) const {
 bool SurfaceDraw::accepts(const Eigen::Vector2d& p, std::size_t surface) const {
   const Piece& piece = pieces_[surface];
   return !piece.rejects || depthIn(piece.outer, piece.holes, p) >= inset_;
+}
+
+bool SurfaceDraw::drawnBounds(std::size_t surface, Eigen::Vector2d& lo, Eigen::Vector2d& hi) const {
+  lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  hi = -lo;
+  for (std::size_t k = 0; k < owner_.size(); ++k) {
+    if (owner_[k] == surface) {
+      for (std::size_t c = 3 * k; c < 3 * k + 3; ++c) {
+        lo = lo.cwiseMin(triangles_[c]);
+        hi = hi.cwiseMax(triangles_[c]);
+      }
+    }
+  }
+  return (hi.array() >= lo.array()).all();
+}
+
+double SurfaceDraw::insetDepth(const Eigen::Vector2d& p, std::size_t surface) const {
+  // A convex surface's inset is exactly where the depth reaches the inset; any other keeps
+  // the draws that accepts() finds that deep.
+  const Piece& piece = pieces_[surface];
+  if (piece.outer.empty()) {
+    return -std::numeric_limits<double>::infinity();
+  }
+  return depthIn(piece.outer, piece.holes, p) - inset_;
 }
 
 double surfaceShortfall(const SupportSurface& surface, double inset, const Eigen::Vector2d& p) {

@@ -11,6 +11,7 @@
 
 #include "placement_samplers/sampling/region.hpp"
 #include "placement_samplers/sampling/scene_generator.hpp"
+#include "placement_samplers/validation/scene_validator.hpp"
 #include "test_helpers.hpp"
 
 namespace placement_samplers {
@@ -290,6 +291,137 @@ TEST(FreeSpace, RelationFailuresNameTheRelation) {
             }),
             "samplers[0].relations: sampler 'S': relations take strategy rejection or "
             "free_space, not dense");
+}
+
+/// Surfaces: a shelf of three 0.6 x 0.3 boards (0.32 m apart), a 0.6 x 0.6 frame around a
+/// 0.2 x 0.2 hole (drawn whole, its inset by rejection) and a 0.8 x 0.6 table.
+const std::string kSurfaceObjects = R"(
+  shelf:
+    shapes:
+      - {shape: box, size: [0.6, 0.3, 0.02], position: [0, 0, 0.01]}
+      - {shape: box, size: [0.6, 0.3, 0.02], position: [0, 0, 0.35]}
+      - {shape: box, size: [0.6, 0.3, 0.02], position: [0, 0, 0.69]}
+  frame:
+    shapes:
+      - {shape: box, size: [0.6, 0.2, 0.04], position: [0, 0.2, 0]}
+      - {shape: box, size: [0.6, 0.2, 0.04], position: [0, -0.2, 0]}
+      - {shape: box, size: [0.2, 0.2, 0.04], position: [0.2, 0, 0]}
+      - {shape: box, size: [0.2, 0.2, 0.04], position: [-0.2, 0, 0]}
+  table: {shape: box, size: [0.8, 0.6, 0.05]}
+fixtures:
+  - {name: shelf1, object: shelf, position: [0.5, 0.0, 0.0]}
+  - {name: frame1, object: frame, position: [-1.0, 0.0, 0.5]}
+  - {name: table1, object: table, position: [0.0, -2.0, 0.775]}
+)";
+
+/// @p n cans on the surfaces of @p of.
+std::string cansOn(int n, const std::string& of, const std::string& strategy, int attempts,
+                   const std::string& extra = "") {
+  std::string yaml = "objects:\n";
+  std::string names;
+  for (int i = 0; i < n; ++i) {
+    yaml += "  c" + std::to_string(i) + ": {shape: cylinder, radius: 0.03, length: 0.12}\n";
+    names += (i ? ", c" : "c") + std::to_string(i);
+  }
+  return yaml + kSurfaceObjects.substr(1) + "samplers:\n  - {name: S, strategy: " + strategy +
+         ", objects: [" + names + "], region: {shape: surface, of: " + of +
+         "}, max_attempts: " + std::to_string(attempts) + extra + "}\n";
+}
+
+/// Scenes @p seed of @p yaml, every placed one checked by the validator (on a surface it is
+/// on, at its height, no overlap) while its generator lives (the names are views into it).
+void expectValid(const std::string& yaml, std::uint64_t seed, std::size_t count) {
+  const SceneGenerator generator(test::buildFromYaml(yaml));
+  const PreparedRequest request = generator.prepare(SampleRequest());
+  for (const SceneResult& r : generator.sampleScenes(request, seed, count, 2)) {
+    if (!r.success) {
+      continue;
+    }
+    std::vector<GivenPose> poses;
+    for (const ObjectPlacement& p : r.placements) {
+      poses.push_back({std::string(p.name), p.position, p.orientation});
+    }
+    const SceneVerdict v = validateScene(generator, request, poses);
+    std::string why;
+    for (const ObjectVerdict& o : v.objects) {
+      why += o.reasons.empty() ? "" : o.reasons[0].message + "; ";
+    }
+    ASSERT_TRUE(v.valid) << "scene " << r.index << ": " << why;
+  }
+}
+
+/// On three boards (24 cans): free_space's scenes are rejection's, boards chosen by free area
+/// included; most objects after the first few come from the cells with 64 attempts.
+TEST(FreeSpace, OnSurfacesSameDistributionAsRejection) {
+  std::vector<std::pair<std::string, Statistic>> statistics;
+  for (const std::size_t k : {0u, 12u, 23u}) {
+    statistics.push_back({"z of object " + std::to_string(k),
+                          [k](const SceneResult& s) { return s.placements[k].position.z(); }});
+    statistics.push_back({"x of object " + std::to_string(k),
+                          [k](const SceneResult& s) { return s.placements[k].position.x(); }});
+  }
+  statistics.push_back(
+      {"y of object 23", [](const SceneResult& s) { return s.placements[23].position.y(); }});
+  const std::string freeSpace = cansOn(24, "shelf1", "free_space", 64);
+  expectSameDistribution(cansOn(24, "shelf1", "rejection", 100000), freeSpace, statistics, 3000);
+  const std::vector<SceneResult> out = run(freeSpace, 12, 3000);
+  std::size_t fromCells = 0;
+  std::size_t placed = 0;
+  for (const SceneResult& s : out) {
+    for (const ObjectPlacement& p : s.placements) {
+      fromCells += p.attempts > 8 ? 1 : 0;
+      ++placed;
+    }
+  }
+  EXPECT_GT(fromCells, placed / 50) << fromCells << " of " << placed;
+  expectValid(freeSpace, 12, 500);
+}
+
+/// A surface with a hole, drawn whole, its inset by rejection; a keep-out zone.
+TEST(FreeSpace, OnASurfaceWithAHoleSameDistributionAsRejection) {
+  const std::string zone =
+      ", keep_out: [{shape: disk, center: [-1.2, 0.2], radius: 0.08, frame: world}]";
+  std::vector<std::pair<std::string, Statistic>> statistics;
+  for (const std::size_t k : {0u, 14u}) {
+    statistics.push_back({"x of object " + std::to_string(k),
+                          [k](const SceneResult& s) { return s.placements[k].position.x(); }});
+    statistics.push_back({"y of object " + std::to_string(k),
+                          [k](const SceneResult& s) { return s.placements[k].position.y(); }});
+  }
+  statistics.push_back({"nearest earlier object of object 14",
+                        [](const SceneResult& s) { return nearestEarlier(s, 14); }});
+  const std::string freeSpace = cansOn(15, "frame1", "free_space", 64, zone);
+  expectSameDistribution(cansOn(15, "frame1", "rejection", 100000, zone), freeSpace, statistics,
+                         3000);
+  const std::vector<SceneResult> out = run(freeSpace, 12, 500);
+  for (const SceneResult& s : out) {
+    for (const ObjectPlacement& p : s.placements) {
+      // At least its radius from the hole, [-0.1, 0.1] x [-0.1, 0.1] about the frame's centre.
+      const Eigen::Vector2d local = p.position.head<2>() - Eigen::Vector2d(-1.0, 0.0);
+      const Eigen::Vector2d out = (local.cwiseAbs() - Eigen::Vector2d(0.1, 0.1)).cwiseMax(0.0);
+      EXPECT_GE(out.norm(), 0.03 - 1e-9) << "near the hole: " << local.transpose();
+      EXPECT_GE((p.position.head<2>() - Eigen::Vector2d(-1.2, 0.2)).norm(), 0.11 - 1e-9);
+    }
+  }
+  expectValid(freeSpace, 12, 500);
+}
+
+/// 80 cans on a 0.8 x 0.6 table top with 200 attempts each: rejection fails most scenes,
+/// free_space places nearly all, every one valid.
+TEST(FreeSpace, OnASurfaceFillsWhereRejectionRunsOut) {
+  std::size_t rejected = 0;
+  for (const SceneResult& s : run(cansOn(80, "table1", "rejection", 200), 5, 100)) {
+    rejected += s.success ? 0 : 1;
+  }
+  const std::string freeSpace = cansOn(80, "table1", "free_space", 200);
+  const std::vector<SceneResult> out = run(freeSpace, 5, 100);
+  std::size_t placed = 0;
+  for (const SceneResult& s : out) {
+    placed += s.success ? 1 : 0;
+  }
+  EXPECT_GT(rejected, 50u);
+  EXPECT_GE(placed, 95u);
+  expectValid(freeSpace, 5, 100);
 }
 
 TEST(FreeSpace, UnknownStrategyIsAnError) {

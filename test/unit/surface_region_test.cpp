@@ -337,7 +337,8 @@ TEST(SurfaceRegion, ConfigurationErrorsSayWhatIsWrong) {
             "samplers[0].region.normal_tolerance: expected an angle in [0, pi/2) [rad]");
   EXPECT_EQ(buildError("samplers:\n  - {name: S, objects: [cube], strategy: dense, region: "
                        "{shape: surface, of: shelf1}}\n"),
-            "samplers[0].region: sampler 'S': region (surface) takes strategy rejection only");
+            "samplers[0].region: sampler 'S': region (surface) takes strategy rejection or "
+            "free_space");
 }
 
 TEST(SurfaceRegion, SelectTopTakesTheHighestSurfaces) {

@@ -76,12 +76,21 @@ class SurfaceDraw {
   double z(std::size_t surface) const { return pieces_[surface].z; }
   /// The area draw() covers [m^2].
   double drawnArea() const { return area_; }
+  /// The surfaces, in the order make() was given them (those the object does not fit on too).
+  std::size_t surfaceCount() const { return pieces_.size(); }
+  /// The bounds of what draw() covers on surface @p surface [m]; false when it covers nothing
+  /// there.
+  bool drawnBounds(std::size_t surface, Eigen::Vector2d& lo, Eigen::Vector2d& hi) const;
+  /// How deep @p p lies in surface @p surface inset by the margin [m]: >= 0 where draws are
+  /// kept, < 0 elsewhere; it changes by at most the distance @p p moves (strategy free_space's
+  /// cells).
+  double insetDepth(const Eigen::Vector2d& p, std::size_t surface) const;
 
  private:
   struct Piece {
     double z = 0.0;
-    bool rejects = false;
-    std::vector<Eigen::Vector2d> outer;
+    bool rejects = false;  ///< accepts() tests the inset (a non-convex or holed surface)
+    std::vector<Eigen::Vector2d> outer;  ///< counter-clockwise; empty: the object does not fit
     std::vector<std::vector<Eigen::Vector2d>> holes;
   };
   std::vector<Piece> pieces_;

@@ -237,6 +237,8 @@ class UniformRandomSampler : public PlacementSampler {
   bool sampleDense(SampleContext& context, const Eigen::Vector3d& base, bool onTop) const;
   /// sample() with strategy free_space (free_space_placement.cpp).
   bool sampleFreeSpace(SampleContext& context, const Eigen::Vector3d& base, bool onTop) const;
+  /// sampleFreeSpace() on a surface region (surface_free_space.cpp).
+  bool sampleFreeSpaceOnSurfaces(SampleContext& context, const Eigen::Vector3d& base) const;
   /// Records that @p object could not be placed in @p limit attempts; @p outside of them fell
   /// outside the inset region or into a keep-out zone. @return false
   bool failPlacement(SampleContext& context, const ObjectModel& object, std::uint32_t limit,
