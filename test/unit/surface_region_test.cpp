@@ -225,12 +225,41 @@ TEST(SurfaceRegion, RequestFixturesAreFoundPerCall) {
   const std::string yaml =
       "samplers:\n  - {name: S, objects: [cube], region: {shape: surface, of: cart}}\n";
   const Scenes s = scenes(yaml, 200, 1, request);
-  for (const SceneResult& scene : s.results) {
-    ASSERT_TRUE(scene.success) << scene.message;
-    const Eigen::Vector3d& p = scene.placements[0].position;
-    EXPECT_NEAR(p.z(), 0.1 + 0.02, 1e-12);
-    EXPECT_LE(std::abs(p.x() - 3.0), 0.25);
-    EXPECT_LE(std::abs(p.y() - 3.0), 0.2);
+  // strategy free_space too, with 24 cubes and few attempts, so that its cells are built on
+  // the request's fixture.
+  std::string objects;
+  std::string cubes = "cube";
+  for (int i = 0; i < 23; ++i) {
+    objects += "  k" + std::to_string(i) + ": {shape: box, size: [0.04, 0.04, 0.04]}\n";
+    cubes += ", k" + std::to_string(i);
+  }
+  std::string crowded = kScene;
+  crowded.insert(crowded.find("fixtures:"), objects);
+  crowded += "samplers:\n  - {name: S, objects: [" + cubes +
+             "], strategy: free_space, max_attempts: 40, region: {shape: surface, of: cart}}\n";
+  const SceneGenerator freeSpace(buildFromYaml(crowded));
+  const std::vector<SceneResult> crowdedScenes =
+      freeSpace.sampleScenes(freeSpace.prepare(request), 5, 200, 1);
+  std::size_t placed = 0;
+  std::size_t fromCells = 0;
+  for (const SceneResult& scene : crowdedScenes) {
+    placed += scene.success ? 1 : 0;
+    for (const ObjectPlacement& placement : scene.placements) {
+      fromCells += placement.attempts > 5 ? 1 : 0;  // 5 = 40 / 8 are rejection's
+    }
+  }
+  EXPECT_GT(placed, 180u);
+  EXPECT_GT(fromCells, 200u);
+  for (const std::vector<SceneResult>* results : {&s.results, &crowdedScenes}) {
+    for (const SceneResult& scene : *results) {
+      ASSERT_TRUE(scene.success || results == &crowdedScenes) << scene.message;
+      for (const ObjectPlacement& placement : scene.placements) {
+        const Eigen::Vector3d& p = placement.position;
+        EXPECT_NEAR(p.z(), 0.1 + 0.02, 1e-12);
+        EXPECT_LE(std::abs(p.x() - 3.0), 0.25 - 0.028);
+        EXPECT_LE(std::abs(p.y() - 3.0), 0.2 - 0.028);
+      }
+    }
   }
   // The configuration warns that the name must come with each request; a request without it
   // is refused.
