@@ -2,6 +2,7 @@
 // position (free_cells.hpp) instead of the whole region.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "placement_samplers/sampling/uniform_random_sampler.hpp"
 #include "placement_samplers/text.hpp"
@@ -112,15 +113,20 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
 
     // Relations are tests of each attempt, as under rejection: the draws from the cells then stay
     // uniform over the free positions where every relation holds.
-    const bool related = !entry.relations.empty();
-    PlacementRelations relations;
-    if (related && !resolveRelations(context, entry, lo + offset, hi + offset, relations)) {
-      return false;
+    // On the heap, and tested out of line: an object without relations keeps the loop it had
+    // (1.7 kB more in its frame and the tests inline made it 5-15 % slower).
+    std::unique_ptr<PlacementRelations> relations;
+    if (!entry.relations.empty()) {
+      relations = std::make_unique<PlacementRelations>();
+      if (!resolveRelations(context, entry, lo + offset, hi + offset, *relations)) {
+        return false;
+      }
     }
+    const bool related = relations != nullptr;
     // At kRelationProbeAttempts: false, after fail(), when a relation cannot hold in the box.
     const auto relationsImpossible = [&](std::uint32_t attempt) {
       return related && attempt == kRelationProbeAttempts &&
-             !relationsPossible(context, object, relations);
+             !relationsPossible(context, object, *relations);
     };
 
     // Rejections per entry for the failure message, zeroed at the first collision: most objects
@@ -146,12 +152,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       }
       outside += blocked ? 1 : 0;
       if (!blocked && related) {
-        // The fcl modes' exact gaps need the turn (face: towards the target from here).
-        if (relations.exact) {
-          candidate.orientation =
-              relatedOrientation(engine, object, candidate.position.head<2>(), &relations);
-        }
-        blocked = !relationsHold(context, relations, candidate);
+        blocked = !relationsAccept(context, engine, *relations, candidate);
       }
       if (!blocked && check) {
         const std::ptrdiff_t blocker = context.firstCollision(candidate);
@@ -167,9 +168,9 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
       if (blocked) {
         return false;
       }
-      if (related && !relations.exact) {
+      if (related && !relations->exact) {
         candidate.orientation =
-            relatedOrientation(engine, object, candidate.position.head<2>(), &relations);
+            relatedOrientation(engine, object, candidate.position.head<2>(), relations.get());
       } else if (!related && !orientFirst) {
         candidate.orientation = sampleOrientation(engine, object);
       }
@@ -196,7 +197,7 @@ bool UniformRandomSampler::sampleFreeSpace(SampleContext& context, const Eigen::
     if (placed) {
       continue;
     }
-    const PlacementRelations* refusals = related ? &relations : nullptr;
+    const PlacementRelations* refusals = relations.get();
     if (attempt > limit) {
       return failPlacement(context, object, limit, collided > 0 ? counts : nullptr, outside,
                            refusals);

@@ -180,6 +180,17 @@ bool UniformRandomSampler::relationsPossible(SampleContext& context, const Objec
   return true;
 }
 
+bool UniformRandomSampler::relationsAccept(SampleContext& context, Engine& engine,
+                                           PlacementRelations& relations,
+                                           Candidate& candidate) const {
+  if (relations.exact) {
+    // Face: towards the target from here.
+    candidate.orientation =
+        relatedOrientation(engine, *candidate.object, candidate.position.head<2>(), &relations);
+  }
+  return relationsHold(context, relations, candidate);
+}
+
 bool UniformRandomSampler::relationsHold(SampleContext& context, PlacementRelations& relations,
                                          const Candidate& candidate) const {
   const Eigen::Vector2d p = candidate.position.head<2>();

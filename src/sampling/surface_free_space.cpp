@@ -2,6 +2,7 @@
 // from cells per surface that may still hold a free position (README, "Strategies").
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -61,12 +62,16 @@ bool UniformRandomSampler::sampleFreeSpaceOnSurfaces(SampleContext& context,
     if (draw == nullptr) {
       return fail(context, &object, 0, error);
     }
-    const bool related = !entry.relations.empty();
-    PlacementRelations relations;
-    if (related && !resolveRelations(context, entry, Eigen::Vector2d(1.0, 1.0),
-                                     Eigen::Vector2d(0.0, 0.0), relations)) {
-      return false;
+    // On the heap and tested out of line, as in sampleFreeSpace().
+    std::unique_ptr<PlacementRelations> relations;
+    if (!entry.relations.empty()) {
+      relations = std::make_unique<PlacementRelations>();
+      if (!resolveRelations(context, entry, Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(0.0, 0.0),
+                            *relations)) {
+        return false;
+      }
     }
+    const bool related = relations != nullptr;
     const double radius = object.horizontalRadius;
     const double keepOutMargin = params_.ensureObjectBoundaryInRange ? radius : 0.0;
     const double lift = params_.zOffset - object.bottomOffset.z();
@@ -95,10 +100,7 @@ bool UniformRandomSampler::sampleFreeSpaceOnSurfaces(SampleContext& context,
       }
       outside += blocked ? 1 : 0;
       if (!blocked && related) {
-        if (relations.exact) {
-          candidate.orientation = relatedOrientation(engine, object, p, &relations);
-        }
-        blocked = !relationsHold(context, relations, candidate);
+        blocked = !relationsAccept(context, engine, *relations, candidate);
       }
       if (!blocked && check) {
         const std::ptrdiff_t blocker = context.firstCollision(candidate);
@@ -114,8 +116,8 @@ bool UniformRandomSampler::sampleFreeSpaceOnSurfaces(SampleContext& context,
       if (blocked) {
         return false;
       }
-      if (related && !relations.exact) {
-        candidate.orientation = relatedOrientation(engine, object, p, &relations);
+      if (related && !relations->exact) {
+        candidate.orientation = relatedOrientation(engine, object, p, relations.get());
       } else if (!related && !orientFirst) {
         candidate.orientation = sampleOrientation(engine, object);
       }
@@ -124,9 +126,9 @@ bool UniformRandomSampler::sampleFreeSpaceOnSurfaces(SampleContext& context,
     };
     const auto impossible = [&](std::uint32_t attempt) {
       return related && attempt == kRelationProbeAttempts &&
-             !relationsPossible(context, object, relations);
+             !relationsPossible(context, object, *relations);
     };
-    const PlacementRelations* refusals = related ? &relations : nullptr;
+    const PlacementRelations* refusals = relations.get();
 
     // Rejection first, on the surfaces as rejection draws: uniform over the free positions
     // when it passes, as the cells' draws are, so the mixture is too.

@@ -206,6 +206,10 @@ class UniformRandomSampler : public PlacementSampler {
   /// the first that does not.
   bool relationsHold(SampleContext& context, PlacementRelations& relations,
                      const Candidate& candidate) const;
+  /// relationsHold() for @p candidate, its turn drawn first in the fcl modes (@p relations.exact:
+  /// their exact gaps need it); out of line, for the loops that test relations in a lambda.
+  bool relationsAccept(SampleContext& context, Engine& engine, PlacementRelations& relations,
+                       Candidate& candidate) const;
   /// The orientation of @p object at @p p: the sampler's rotation draw, or the one of a
   /// rotation relation (README, "Relations").
   Eigen::Quaterniond relatedOrientation(Engine& engine, const ObjectModel& object,
