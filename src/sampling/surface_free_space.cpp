@@ -76,7 +76,7 @@ bool UniformRandomSampler::sampleFreeSpaceOnSurfaces(SampleContext& context,
     const double keepOutMargin = params_.ensureObjectBoundaryInRange ? radius : 0.0;
     const double lift = params_.zOffset - object.bottomOffset.z();
     const double bottom = object.bottomOffset.z();
-    std::vector<std::uint32_t>* counts = nullptr;
+    std::vector<std::uint32_t>* counts = check ? &context.blockerCounts() : nullptr;
     std::uint32_t outside = 0;
     std::uint32_t collided = 0;
     Candidate candidate;
@@ -92,28 +92,12 @@ bool UniformRandomSampler::sampleFreeSpaceOnSurfaces(SampleContext& context,
       if (orientFirst && !related) {
         candidate.orientation = sampleOrientation(engine, object);
       }
-      bool blocked =
-          (fromCells && draw->insetDepth(p, surface) < 0.0) || !draw->accepts(p, surface);
-      for (std::size_t i = 0; i < params_.keepOut.size() && !blocked; ++i) {
-        const KeepOutZone& zone = params_.keepOut[i];
-        blocked = keepOutBlocks(zone, zone.world ? p : Eigen::Vector2d(p - offset), keepOutMargin);
-      }
+      const bool blocked = (fromCells && draw->insetDepth(p, surface) < 0.0) ||
+                           !draw->accepts(p, surface) ||
+                           inKeepOut(p - offset, offset, keepOutMargin);
       outside += blocked ? 1 : 0;
-      if (!blocked && related) {
-        blocked = !relationsAccept(context, engine, *relations, candidate);
-      }
-      if (!blocked && check) {
-        const std::ptrdiff_t blocker = context.firstCollision(candidate);
-        if (blocker != CollisionChecker::kNone) {
-          if (counts == nullptr) {
-            counts = &context.blockerCounts();
-          }
-          ++(*counts)[static_cast<std::size_t>(blocker)];
-          ++collided;
-          blocked = true;
-        }
-      }
-      if (blocked) {
+      if (blocked || (related && !relationsAccept(context, engine, *relations, candidate)) ||
+          (check && collidesCounted(context, candidate, *counts, collided))) {
         return false;
       }
       if (related && !relations->exact) {
